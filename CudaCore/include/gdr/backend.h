@@ -1,0 +1,31 @@
+// Run-time choice of execution space: the same kernels run on CUDA or on OpenMP.
+#pragma once
+#include <cstddef>
+#include <string>
+
+namespace gdr {
+
+enum class Backend { Auto = 0, Gpu = 1, Cpu = 2 };
+
+const char* to_string(Backend b);
+Backend backend_from_string(const std::string& name);  // "auto" | "gpu" | "cpu"; throws InvalidInput
+
+struct DeviceInfo {
+  bool available = false;       // a CUDA device is usable from this process
+  std::string name;             // e.g. "NVIDIA H100 80GB HBM3"
+  std::size_t total_memory = 0; // bytes
+  std::string reason;           // why not available (no driver, built without CUDA, ...)
+};
+
+// Queries the CUDA runtime once; safe on machines without a driver.
+const DeviceInfo& device_info();
+bool gpu_available();
+
+// Resolves Auto: GPU when present and the work is large enough, else CPU.
+// Throws Error(NoDevice) when Gpu is requested and none is usable.
+Backend resolve_backend(Backend requested, std::size_t work_size = 0,
+                        std::size_t gpu_min_work = 0);
+
+int cpu_threads();  // OpenMP threads used by the CPU backend
+
+}  // namespace gdr

@@ -1,0 +1,53 @@
+// Readers and writers for the formats users already have. Malformed files throw
+// gdr::Error(Status::IoError, "FILE:LINE: reason"); they never crash.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "gdr/pslg.h"
+
+namespace gdr::io {
+
+// Triangle .poly (points, segments, holes; 0- or 1-based as the file says). A .poly whose
+// point section is empty takes its points from the .node file beside it. Also reads .node.
+Pslg read_poly(const std::string& path);
+
+// TetGen .poly / .smesh (facets triangulated into Surface::triangles; polygons fanned
+// only when convex, else an error), .node / .ele, and surfaces as .off and .stl.
+Surface read_tetgen_poly(const std::string& path);
+Surface read_off(const std::string& path);
+Surface read_stl(const std::string& path);   // ASCII or binary
+TetMesh read_tetgen_mesh(const std::string& node_path, const std::string& ele_path);
+
+// Reads any supported input by extension: .poly (2D Triangle or 3D TetGen by its header),
+// .node, .off, .stl, .smesh.
+enum class InputKind { Pslg2d, Surface3d };
+InputKind detect_input_kind(const std::string& path);
+
+// Named per-element arrays attached to an output file.
+struct DataArray {
+  std::string name;
+  int components = 1;
+  std::vector<double> values;  // size = components * count
+};
+
+struct Attributes {
+  std::vector<DataArray> point_data;
+  std::vector<DataArray> cell_data;
+};
+
+// VTK XML (.vtu unstructured grid, .vtp polydata), written by the core itself so the
+// core-only build (e.g. the GPU machine) writes results too.
+void write_vtu(const std::string& path, const TriMesh& mesh, const Attributes& attributes = {});
+void write_vtp(const std::string& path, const TriMesh& mesh, const Attributes& attributes = {});
+void write_vtu(const std::string& path, const TetMesh& mesh, const Attributes& attributes = {});
+
+// Triangle .node/.ele (+ .poly of subsegments); TetGen .node/.ele/.face. `base` has no extension.
+void write_triangle(const std::string& base, const TriMesh& mesh);
+void write_tetgen(const std::string& base, const TetMesh& mesh);
+
+// Writes by the extension of `path`: .vtu, .vtp, .node or .ele (Triangle files beside it).
+void write_mesh(const std::string& path, const TriMesh& mesh, const Attributes& attributes = {});
+void write_mesh(const std::string& path, const TetMesh& mesh, const Attributes& attributes = {});
+
+}  // namespace gdr::io

@@ -1,0 +1,72 @@
+// gDP2d: quality 2D constrained Delaunay refinement (Chen & Tan, section 5).
+// Public, VTK-free, CUDA-free facade. One call meshes a PSLG on the GPU or the CPU.
+#pragma once
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "gdr/backend.h"
+#include "gdr/error.h"
+#include "gdr/progress.h"
+#include "gdr/pslg.h"
+
+namespace gdr {
+
+enum class EncroachMode { Ruppert = 0, Chew = 1 };  // diametral circle | diametral lens
+
+struct Refine2dOptions {
+  double min_angle = 20.0;         // degrees, (0, 34]; 0 disables the angle criterion
+  double max_edge_length = 0.0;    // 0 = off
+  double max_area = 0.0;           // 0 = off
+  long long max_steiner_points = -1;  // -1 = unlimited; refinement stops cleanly at the cap
+  EncroachMode mode = EncroachMode::Ruppert;
+  bool off_centers = false;        // Ungor off-centers instead of circumcenters (fewer points)
+  bool remove_exterior = false;    // keep only triangles enclosed by segments (and outside holes)
+  bool split_intersections = false;  // split crossing segments instead of refusing them
+  bool refine = true;              // false: only the constrained Delaunay triangulation
+  Backend backend = Backend::Auto;
+  std::size_t gpu_min_triangles = 200000;  // Auto uses the GPU above this estimated output size
+};
+
+struct PhaseTime {
+  std::string name;
+  double seconds = 0;
+};
+
+struct Refine2dStats {
+  Backend backend_used = Backend::Cpu;
+  std::string device_name;
+  int iterations = 0;
+  long long input_points = 0;
+  long long duplicate_points_merged = 0;
+  long long input_segments = 0;
+  long long steiner_points = 0;
+  long long output_points = 0;
+  long long output_triangles = 0;
+  long long bad_triangles = 0;        // left bad (next to small input angles, or capped)
+  double bad_area_percent = 0;
+  long long small_angle_bad = 0;      // of those: protected by the small-input-angle rule
+  bool steiner_cap_reached = false;
+  bool stalled = false;               // no point could be inserted although bad elements remain
+  double min_angle_deg = 0;           // smallest angle in the output
+  double cdt_seconds = 0;             // initial CDT (CPU)
+  double refine_seconds = 0;          // refinement including transfers
+  double total_seconds = 0;
+  std::size_t peak_device_bytes = 0;  // GPU backend: peak bytes held by the engine on the device
+  std::vector<PhaseTime> phases;      // accumulated refinement time per phase
+};
+
+struct Refine2dResult {
+  TriMesh mesh;
+  Refine2dStats stats;
+};
+
+// Checks input and parameters; throws gdr::Error naming the offending items.
+void validate_refine2d_input(const Pslg& input, const Refine2dOptions& options);
+
+// Meshes `input`. Throws gdr::Error (InvalidInput, SelfIntersectingInput, NoDevice,
+// OutOfDeviceMemory, Aborted, InternalError).
+Refine2dResult refine_2d(const Pslg& input, const Refine2dOptions& options,
+                         const Callbacks& callbacks = {});
+
+}  // namespace gdr

@@ -1,0 +1,69 @@
+// CPU validators, used by tests, the CLI (--check) and the benchmarks. All topology checks
+// use exact predicates. Steiner points on segments are rounded constructions, so segment
+// conformity is checked through the mesh's subsegment structure with a tiny relative
+// tolerance on collinearity; the (constrained) Delaunay property is exact on the stored
+// coordinates.
+#pragma once
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "gdr/pslg.h"
+
+namespace gdr {
+
+struct QualityStats {
+  std::size_t elements = 0;
+  double min_angle_deg = 0, max_angle_deg = 0;        // triangles: plane angles
+  double min_dihedral_deg = 0, max_dihedral_deg = 0;  // tetrahedra
+  double max_radius_edge = 0, mean_radius_edge = 0;
+  std::size_t bad_elements = 0;       // min angle < bound (2D) / radius-edge > bound (3D)
+  double bad_measure_percent = 0;     // bad area (2D) or volume (3D) over total, in percent
+  double total_measure = 0;           // area or volume
+  std::vector<std::size_t> histogram; // 2D: min angle per triangle, 1-degree bins [0,60];
+                                      // 3D: dihedral angles, 1-degree bins [0,180]
+};
+
+struct ValidationReport {
+  bool valid = true;                  // no topology or conformity error (quality is separate)
+  std::vector<std::string> problems;  // first problems found, human readable (capped)
+  std::size_t inverted_elements = 0;  // zero or negative orientation
+  std::size_t nonmanifold = 0;        // edges (2D) / faces (3D) shared by more than two elements
+  std::size_t missing_points = 0;     // input points absent from the output
+  std::size_t missing_segments = 0;   // input segments not recovered as subsegment chains
+  std::size_t missing_facets = 0;     // 3D: input facets not covered by subfaces
+  std::size_t non_delaunay = 0;       // locally non-(constrained-)Delaunay edges / faces
+  QualityStats quality;
+  std::string summary() const;        // one paragraph for logs and the CLI
+};
+
+struct ValidateOptions {
+  double min_angle_deg = 0;           // 2D quality bound for counting bad triangles (0 = off)
+  double max_radius_edge = 0;         // 3D quality bound (0 = off)
+  bool check_delaunay = true;         // constrained Delaunay by exact incircle/insphere
+  bool check_conformity = true;       // input points/segments/facets present
+  double segment_tolerance = 1e-9;    // relative distance of subsegment vertices from segments
+  std::size_t max_problems = 20;      // cap on problem messages
+};
+
+// 2D: counter-clockwise triangles, manifold edges, every input point and segment present
+// (a chain of subsegments), every non-subsegment interior edge locally Delaunay.
+ValidationReport validate_trimesh(const TriMesh& mesh, const Pslg* input,
+                                  const ValidateOptions& options = {});
+
+// 3D: positive tetrahedra, manifold faces, input facets covered by subfaces,
+// locally Delaunay faces that are not subfaces.
+ValidationReport validate_tetmesh(const TetMesh& mesh, const Surface* input,
+                                  const ValidateOptions& options = {});
+
+// Quality only (no topology), e.g. for arrays in filters.
+QualityStats triangle_quality(const TriMesh& mesh, double min_angle_deg = 0);
+QualityStats tet_quality(const TetMesh& mesh, double max_radius_edge = 0);
+
+// Per-element measures in degrees / ratios (for output arrays).
+void triangle_angles(const Point2& a, const Point2& b, const Point2& c, double& min_deg,
+                     double& max_deg);
+double triangle_radius_edge(const Point2& a, const Point2& b, const Point2& c);
+double triangle_area(const Point2& a, const Point2& b, const Point2& c);
+
+}  // namespace gdr

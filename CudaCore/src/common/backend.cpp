@@ -1,0 +1,84 @@
+#include "gdr/backend.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cctype>
+
+#include "gdr/error.h"
+
+#if defined(GDR_HAVE_CUDA)
+#include <cuda_runtime_api.h>
+#endif
+
+namespace gdr {
+
+const char* to_string(Backend b) {
+  switch (b) {
+    case Backend::Auto: return "auto";
+    case Backend::Gpu: return "gpu";
+    case Backend::Cpu: return "cpu";
+  }
+  return "?";
+}
+
+Backend backend_from_string(const std::string& name) {
+  std::string s = name;
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (s == "auto") return Backend::Auto;
+  if (s == "gpu" || s == "cuda") return Backend::Gpu;
+  if (s == "cpu" || s == "openmp") return Backend::Cpu;
+  throw Error(Status::InvalidInput, "unknown backend '" + name + "' (expected auto, gpu or cpu)");
+}
+
+static DeviceInfo query_device() {
+  DeviceInfo info;
+#if defined(GDR_HAVE_CUDA)
+  int count = 0;  // cudaGetDeviceCount leaves it untouched when there is no driver
+  cudaError_t e = cudaGetDeviceCount(&count);
+  if (e != cudaSuccess || count == 0) {
+    cudaGetLastError();
+    info.reason = e != cudaSuccess ? std::string("no usable CUDA driver/device (") +
+                                         cudaGetErrorString(e) + ")"
+                                   : "no CUDA device";
+    return info;
+  }
+  cudaDeviceProp prop{};
+  if (cudaGetDeviceProperties(&prop, 0) != cudaSuccess) {
+    cudaGetLastError();
+    info.reason = "cannot query CUDA device 0";
+    return info;
+  }
+  info.available = true;
+  info.name = prop.name;
+  info.total_memory = prop.totalGlobalMem;
+#else
+  info.reason = "this build has no CUDA backend";
+#endif
+  return info;
+}
+
+const DeviceInfo& device_info() {
+  static const DeviceInfo info = query_device();
+  return info;
+}
+
+bool gpu_available() { return device_info().available; }
+
+Backend resolve_backend(Backend requested, std::size_t work_size, std::size_t gpu_min_work) {
+  switch (requested) {
+    case Backend::Cpu: return Backend::Cpu;
+    case Backend::Gpu:
+      if (!gpu_available())
+        throw Error(Status::NoDevice, "GPU backend requested but " + device_info().reason);
+      return Backend::Gpu;
+    case Backend::Auto:
+      if (gpu_available() && work_size >= gpu_min_work) return Backend::Gpu;
+      return Backend::Cpu;
+  }
+  return Backend::Cpu;
+}
+
+int cpu_threads() { return omp_get_max_threads(); }
+
+}  // namespace gdr

@@ -1,0 +1,106 @@
+// Reusable parallel building blocks on top of Ops<Space>: fill, stream compaction (S1) and
+// the tuple-based ExpandList loop (paper, Algorithm 4; S2 regularization, S5 deferment).
+#pragma once
+#include <cstddef>
+
+#include "exec/buffer.h"
+#include "exec/hd.h"
+
+namespace gdr::exec {
+
+template <class Space, class T>
+void fill(T* p, std::size_t n, T value) {
+  Ops<Space>::for_each(n, [=] GDR_HD(long long i) { p[i] = value; });
+}
+
+template <class Space>
+void iota(int* p, std::size_t n, int start = 0) {
+  Ops<Space>::for_each(n, [=] GDR_HD(long long i) { p[i] = start + static_cast<int>(i); });
+}
+
+// Stream compaction: writes, in increasing order, every i in [0,n) with pred(i) != 0 into
+// `out` and returns how many. `pred` is a host+device functor of (long long i) -> bool.
+template <class Space, class Pred>
+std::size_t compact_indices(std::size_t n, Pred pred, Buffer<Space, int>& out) {
+  if (n == 0) {
+    out.resize_discard(0);
+    return 0;
+  }
+  Buffer<Space, int> offset(n);
+  int* off = offset.data();
+  Ops<Space>::for_each(n, [=] GDR_HD(long long i) { off[i] = pred(i) ? 1 : 0; });
+  Buffer<Space, int> flag(n);
+  Ops<Space>::copy_d2d(flag.data(), off, n * sizeof(int));
+  const std::size_t total = static_cast<std::size_t>(Ops<Space>::exclusive_scan(off, off, n));
+  out.resize_discard(total);
+  int* o = out.data();
+  const int* f = flag.data();
+  Ops<Space>::for_each(n, [=] GDR_HD(long long i) {
+    if (f[i]) o[off[i]] = static_cast<int>(i);
+  });
+  return total;
+}
+
+struct ExpandListResult {
+  int rounds = 0;
+  std::size_t size = 0;           // tuples in H at the end (all windows)
+  std::size_t pending_begin = 0;  // [pending_begin, size): tuples left unprocessed (deferred)
+  bool deferred() const { return pending_begin < size; }
+};
+
+struct ExpandListLimits {
+  int max_rounds = 1 << 20;       // hard stop; the rest is deferred
+  int defer_after_rounds = 1 << 20;  // from this round on, stop when the window is small...
+  std::size_t defer_below = 0;    // ...i.e. has fewer tuples than this (S5)
+};
+
+// ExpandList (Algorithm 4). H[0, initial) is the first operation window. Each round applies
+// step(i, h, out) to every tuple of the window; the step may modify h and writes up to K
+// new tuples to out[0..K), returning how many. New tuples are appended to H with positions
+// reserved by a prefix sum, and form the next window. Processed tuples stay in H so callers
+// can inspect them afterwards (e.g. to verify cavity marks).
+template <class Space, int K, class Tuple, class Step>
+ExpandListResult expand_list(Buffer<Space, Tuple>& H, std::size_t initial, Step step,
+                             const ExpandListLimits& limits = {}) {
+  ExpandListResult r;
+  std::size_t left = 0, right = initial;
+  H.resize(initial);
+  Buffer<Space, Tuple> stage;
+  Buffer<Space, int> count;
+  while (left < right) {
+    if (r.rounds >= limits.max_rounds ||
+        (r.rounds >= limits.defer_after_rounds && right - left < limits.defer_below))
+      break;
+    const std::size_t w = right - left;
+    stage.resize_discard(w * K);
+    count.resize_discard(w);
+    Tuple* h = H.data() + left;
+    Tuple* st = stage.data();
+    int* cnt = count.data();
+    const std::size_t base = left;
+    Ops<Space>::for_each(w, [=] GDR_HD(long long j) {
+      cnt[j] = step(static_cast<long long>(base) + j, h[j], st + j * K);
+    });
+    const std::size_t added = static_cast<std::size_t>(Ops<Space>::exclusive_scan(cnt, cnt, w));
+    ++r.rounds;
+    if (added) {
+      H.resize(right + added);
+      Tuple* dst = H.data() + right;
+      // The scan destroyed the counts: recover each as the difference of offsets.
+      const int total = static_cast<int>(added);
+      const long long wl = static_cast<long long>(w);
+      Ops<Space>::for_each(w, [=] GDR_HD(long long j) {
+        const int begin = cnt[j];
+        const int end = (j + 1 < wl) ? cnt[j + 1] : total;
+        for (int k = begin; k < end; ++k) dst[k] = st[j * K + (k - begin)];
+      });
+    }
+    left = right;
+    right += added;
+  }
+  r.size = right;
+  r.pending_begin = left;
+  return r;
+}
+
+}  // namespace gdr::exec

@@ -1,0 +1,93 @@
+// The CPU execution space: OpenMP threads over host memory. Compiled by the host compiler.
+#pragma once
+#include <omp.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <new>
+#include <string>
+#include <vector>
+
+#include "exec/space.h"
+#include "gdr/error.h"
+
+namespace gdr::exec {
+
+template <>
+struct Ops<Cpu> {
+  static constexpr bool is_gpu = false;
+  static constexpr std::ptrdiff_t serial_below = 4096;  // OpenMP start-up costs more below this
+
+  static void* allocate(std::size_t bytes) {
+    if (bytes == 0) bytes = 1;
+    void* p = std::aligned_alloc(64, (bytes + 63) / 64 * 64);
+    if (!p)
+      throw Error(Status::OutOfDeviceMemory,
+                  "out of host memory allocating " + std::to_string(bytes) + " bytes");
+    memory_counter<Cpu>().add(bytes);
+    return p;
+  }
+  static void deallocate(void* p, std::size_t bytes) {
+    std::free(p);
+    memory_counter<Cpu>().sub(bytes == 0 ? 1 : bytes);
+  }
+  static void copy_to_space(void* dst, const void* src, std::size_t bytes) {
+    std::memcpy(dst, src, bytes);
+  }
+  static void copy_to_host(void* dst, const void* src, std::size_t bytes) {
+    std::memcpy(dst, src, bytes);
+  }
+  static void copy_d2d(void* dst, const void* src, std::size_t bytes) {
+    std::memcpy(dst, src, bytes);
+  }
+  static void zero(void* p, std::size_t bytes) { std::memset(p, 0, bytes); }
+  static void synchronize() {}
+
+  template <class F>
+  static void for_each(std::size_t n, F f) {
+    const std::ptrdiff_t m = static_cast<std::ptrdiff_t>(n);
+    if (m < serial_below) {
+      for (std::ptrdiff_t i = 0; i < m; ++i) f(i);
+      return;
+    }
+#pragma omp parallel for schedule(dynamic, 1024)
+    for (std::ptrdiff_t i = 0; i < m; ++i) f(i);
+  }
+
+  // out[i] = sum(in[0..i)); returns the total. `in` and `out` may alias.
+  template <class T>
+  static T exclusive_scan(const T* in, T* out, std::size_t n) {
+    const std::ptrdiff_t m = static_cast<std::ptrdiff_t>(n);
+    if (m < 4 * serial_below) {
+      T run = T(0);
+      for (std::ptrdiff_t i = 0; i < m; ++i) {
+        T v = in[i];
+        out[i] = run;
+        run += v;
+      }
+      return run;
+    }
+    const int nt = omp_get_max_threads();
+    std::vector<T> partial(nt + 1, T(0));
+#pragma omp parallel num_threads(nt)
+    {
+      const int t = omp_get_thread_num();
+      const std::ptrdiff_t lo = m * t / nt, hi = m * (t + 1) / nt;
+      T s = T(0);
+      for (std::ptrdiff_t i = lo; i < hi; ++i) s += in[i];
+      partial[t + 1] = s;
+#pragma omp barrier
+#pragma omp single
+      for (int k = 0; k < nt; ++k) partial[k + 1] += partial[k];
+      T run = partial[t];
+      for (std::ptrdiff_t i = lo; i < hi; ++i) {
+        T v = in[i];
+        out[i] = run;
+        run += v;
+      }
+    }
+    return partial[nt];
+  }
+};
+
+}  // namespace gdr::exec

@@ -1,0 +1,103 @@
+// The CUDA execution space: kernels on the current device, stream-ordered allocations
+// (cudaMallocAsync pool: cheap enough to allocate per phase), CUB scans.
+#pragma once
+#include <cuda_runtime.h>
+
+#include <cub/device/device_scan.cuh>
+#include <string>
+
+#include "exec/space.h"
+#include "gdr/error.h"
+
+namespace gdr::exec {
+
+namespace detail {
+inline void cuda_check(cudaError_t e, const char* what) {
+  if (e == cudaSuccess) return;
+  cudaGetLastError();  // clear sticky-free errors
+  if (e == cudaErrorMemoryAllocation)
+    throw Error(Status::OutOfDeviceMemory, std::string("GPU out of memory (") + what + ")");
+  throw Error(Status::InternalError,
+              std::string("CUDA error in ") + what + ": " + cudaGetErrorString(e));
+}
+
+template <class F>
+__global__ void for_each_kernel(long long n, F f) {
+  long long i = blockIdx.x * (long long)blockDim.x + threadIdx.x;
+  if (i < n) f(i);
+}
+}  // namespace detail
+
+template <>
+struct Ops<Cuda> {
+  static constexpr bool is_gpu = true;
+
+  static void* allocate(std::size_t bytes) {
+    if (bytes == 0) bytes = 1;
+    void* p = nullptr;
+    cudaError_t e = cudaMallocAsync(&p, bytes, 0);
+    if (e != cudaSuccess) {
+      // Free cached pool memory once and retry before giving up.
+      cudaGetLastError();
+      cudaDeviceSynchronize();
+      cudaMemPool_t pool;
+      if (cudaDeviceGetDefaultMemPool(&pool, 0) == cudaSuccess) cudaMemPoolTrimTo(pool, 0);
+      e = cudaMallocAsync(&p, bytes, 0);
+      if (e != cudaSuccess) {
+        cudaGetLastError();
+        throw Error(Status::OutOfDeviceMemory,
+                    "GPU out of memory allocating " + std::to_string(bytes >> 20) + " MiB (" +
+                        std::to_string(memory_counter<Cuda>().current >> 20) +
+                        " MiB already held by the mesher)");
+      }
+    }
+    memory_counter<Cuda>().add(bytes);
+    return p;
+  }
+  static void deallocate(void* p, std::size_t bytes) {
+    cudaFreeAsync(p, 0);
+    memory_counter<Cuda>().sub(bytes == 0 ? 1 : bytes);
+  }
+  static void copy_to_space(void* dst, const void* src, std::size_t bytes) {
+    detail::cuda_check(cudaMemcpy(dst, src, bytes, cudaMemcpyHostToDevice), "upload");
+  }
+  static void copy_to_host(void* dst, const void* src, std::size_t bytes) {
+    detail::cuda_check(cudaMemcpy(dst, src, bytes, cudaMemcpyDeviceToHost), "download");
+  }
+  static void copy_d2d(void* dst, const void* src, std::size_t bytes) {
+    detail::cuda_check(cudaMemcpyAsync(dst, src, bytes, cudaMemcpyDeviceToDevice, 0), "copy");
+  }
+  static void zero(void* p, std::size_t bytes) {
+    detail::cuda_check(cudaMemsetAsync(p, 0, bytes, 0), "memset");
+  }
+  static void synchronize() { detail::cuda_check(cudaDeviceSynchronize(), "synchronize"); }
+
+  template <class F>
+  static void for_each(std::size_t n, F f) {
+    if (n == 0) return;
+    const int block = 256;
+    const long long grid = (static_cast<long long>(n) + block - 1) / block;
+    detail::for_each_kernel<<<static_cast<unsigned>(grid), block>>>(static_cast<long long>(n), f);
+    detail::cuda_check(cudaGetLastError(), "kernel launch");
+  }
+
+  template <class T>
+  static T exclusive_scan(const T* in, T* out, std::size_t n) {
+    if (n == 0) return T(0);
+    // Total = last input + last output, read after the scan (in may alias out: keep last).
+    T last_in;
+    copy_to_host(&last_in, in + n - 1, sizeof(T));
+    std::size_t temp_bytes = 0;
+    detail::cuda_check(cub::DeviceScan::ExclusiveSum(nullptr, temp_bytes, in, out, (int)n),
+                       "scan size");
+    void* temp = allocate(temp_bytes);
+    cudaError_t e = cub::DeviceScan::ExclusiveSum(temp, temp_bytes, in, out, (int)n);
+    deallocate(temp, temp_bytes);
+    detail::cuda_check(e, "scan");
+    T last_out;
+    copy_to_host(&last_out, out + n - 1, sizeof(T));
+    return last_out + last_in;
+  }
+};
+
+}  // namespace gdr::exec

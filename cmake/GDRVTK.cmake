@@ -1,0 +1,1 @@
+# VTK module, Python package and ParaView plugin (added by its owner)
