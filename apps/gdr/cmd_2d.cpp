@@ -1,0 +1,375 @@
+// `gdr 2d`: quality constrained Delaunay refinement of a planar straight-line graph.
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "args.h"
+#include "cli.h"
+#include "gdr/backend.h"
+#include "gdr/io.h"
+#include "gdr/refine2d.h"
+#include "gdr/validate.h"
+#include "json_writer.h"
+#include "mesh_attributes.h"
+#include "progress_bar.h"
+#include "table.h"
+
+namespace gdr::cli {
+
+namespace {
+
+const char* kHelp2d = R"(gdr 2d - quality constrained Delaunay refinement of a 2D PSLG
+
+Usage:
+  gdr 2d INPUT.poly -o OUTPUT [options]
+
+INPUT is a planar straight-line graph in Triangle's .poly format (points, segments, optional
+holes), or a .node file (points only). OUTPUT is written by its extension:
+  .vtu / .vtp   VTK XML (ParaView) with cell arrays MinAngle, MaxAngle, RadiusEdgeRatio,
+                Area, IsBad and point array PointType (0 input, 1 on a segment, 2 free)
+  .node / .ele  Triangle's format (OUTPUT.node, OUTPUT.ele and OUTPUT.poly of subsegments)
+Without -o the mesh is computed, summarized and (with --check) validated, but not written.
+
+Quality and size:
+  --min-angle DEG         smallest angle wanted, in degrees (default 20, at most 34;
+                          0 turns the angle criterion off)
+  --max-edge L            longest edge allowed (default: no limit)
+  --max-area A            largest triangle area allowed (default: no limit)
+  --max-steiner N         stop cleanly after inserting N Steiner points (default: no cap)
+Algorithm:
+  --mode ruppert|chew     encroachment by diametral circle (ruppert, default) or lens (chew)
+  --off-centers           insert off-centers instead of circumcenters (fewer points)
+  --remove-exterior       keep only triangles enclosed by segments (and outside holes)
+  --split-intersections   split crossing segments at their intersections instead of refusing
+  --cdt-only              only the constrained Delaunay triangulation, no refinement
+  --backend auto|gpu|cpu  where to refine (default auto: GPU for large inputs when present)
+Checking and reporting:
+  --check                 validate the result (conformity, constrained Delaunay, quality);
+                          exit code 1 when the mesh is invalid
+  --stats-json FILE       write all statistics (and the validation) as JSON
+  -q, --quiet             no progress, warnings or summary; errors only
+  -h, --help              this text
+
+Examples:
+  gdr 2d shape.poly -o shape.vtu
+  gdr 2d shape.poly -o shape.vtu --min-angle 30 --max-area 0.5 --check
+  gdr 2d map.poly -o map.vtp --remove-exterior --backend gpu --stats-json map.json
+  gdr 2d shape.poly -o shape.node --cdt-only
+
+Exit codes: 0 ok, 1 invalid mesh (--check), 2 usage error, 3 input error, 4 device error,
+5 internal error.
+)";
+
+struct Args2d {
+  std::string input;
+  std::string output;
+  std::string stats_json;
+  Refine2dOptions options;
+  bool check = false;
+  bool quiet = false;
+  bool help = false;
+};
+
+bool output_extension_supported(const std::string& path) {
+  const std::string ext = std::filesystem::path(path).extension().string();
+  return ext == ".vtu" || ext == ".vtp" || ext == ".node" || ext == ".ele";
+}
+
+Args2d parse_2d(const std::vector<std::string>& args) {
+  const std::string cmd = "2d";
+  Args2d a;
+  auto number = [&](const char* name, double& dst) {
+    return OptionSpec{name, 0, true, [&, name](const std::string& v) {
+                        dst = parse_number(cmd, name, v);
+                        if (dst < 0) throw UsageError(cmd, std::string("--") + name + " must be >= 0");
+                      }};
+  };
+  const std::vector<OptionSpec> specs = {
+      {"output", 'o', true, [&](const std::string& v) { a.output = v; }},
+      number("min-angle", a.options.min_angle),
+      number("max-edge", a.options.max_edge_length),
+      number("max-area", a.options.max_area),
+      {"max-steiner", 0, true,
+       [&](const std::string& v) {
+         a.options.max_steiner_points = parse_integer(cmd, "max-steiner", v);
+         if (a.options.max_steiner_points < 0)
+           throw UsageError(cmd, "--max-steiner must be >= 0");
+       }},
+      {"mode", 0, true,
+       [&](const std::string& v) {
+         if (v == "ruppert") a.options.mode = EncroachMode::Ruppert;
+         else if (v == "chew") a.options.mode = EncroachMode::Chew;
+         else throw UsageError(cmd, "--mode must be 'ruppert' or 'chew', got '" + v + "'");
+       }},
+      {"off-centers", 0, false, [&](const std::string&) { a.options.off_centers = true; }},
+      {"remove-exterior", 0, false, [&](const std::string&) { a.options.remove_exterior = true; }},
+      {"split-intersections", 0, false,
+       [&](const std::string&) { a.options.split_intersections = true; }},
+      {"cdt-only", 0, false, [&](const std::string&) { a.options.refine = false; }},
+      {"backend", 0, true,
+       [&](const std::string& v) {
+         try {
+           a.options.backend = backend_from_string(v);
+         } catch (const Error& e) {
+           throw UsageError(cmd, e.what());
+         }
+       }},
+      {"check", 0, false, [&](const std::string&) { a.check = true; }},
+      {"stats-json", 0, true, [&](const std::string& v) { a.stats_json = v; }},
+      {"quiet", 'q', false, [&](const std::string&) { a.quiet = true; }},
+      {"help", 'h', false, [&](const std::string&) { a.help = true; }},
+  };
+  const auto positional = parse_options(cmd, args, specs);
+  if (a.help) return a;
+  if (positional.empty()) throw UsageError(cmd, "missing INPUT file");
+  if (positional.size() > 1) throw UsageError(cmd, "unexpected argument '" + positional[1] + "'");
+  a.input = positional[0];
+  if (!a.output.empty() && !output_extension_supported(a.output))
+    throw UsageError(cmd, "cannot tell the output format of '" + a.output +
+                              "': use .vtu, .vtp, .node or .ele");
+  return a;
+}
+
+double since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+struct CliTimes {
+  double read = 0, write = 0, check = 0, wall = 0;
+};
+
+std::string backend_line(const Refine2dStats& s) {
+  if (s.backend_used == Backend::Gpu)
+    return "gpu (" + (s.device_name.empty() ? std::string("CUDA device") : s.device_name) + ")";
+  return "cpu (OpenMP, " + std::to_string(cpu_threads()) + " threads)";
+}
+
+void print_summary(const Args2d& a, const Pslg& input, const Refine2dResult& r,
+                   const ValidationReport* report, const CliTimes& t) {
+  const Refine2dStats& s = r.stats;
+  Table tab;
+  tab.row({"gdr 2d summary"});
+  tab.row({"input", a.input, ""});
+  tab.row({"  points", with_commas(static_cast<long long>(input.points.size())),
+           s.duplicate_points_merged ? with_commas(s.duplicate_points_merged) + " duplicates merged"
+                                     : ""});
+  tab.row({"  segments", with_commas(static_cast<long long>(input.segments.size())), ""});
+  tab.row({"  holes", with_commas(static_cast<long long>(input.holes.size())), ""});
+  tab.row({"output", a.output.empty() ? "(not written)" : a.output, ""});
+  tab.row({"  points", with_commas(s.output_points), ""});
+  tab.row({"  triangles", with_commas(s.output_triangles), ""});
+  tab.row({"  Steiner points", with_commas(s.steiner_points),
+           std::to_string(s.iterations) + " iterations"});
+  tab.row({"backend", backend_line(s), ""});
+  tab.row({"peak device memory",
+           s.backend_used == Backend::Gpu ? bytes(s.peak_device_bytes) : "-", ""});
+  tab.row({"time", "seconds", "share"});
+  const double refine = s.refine_seconds > 0 ? s.refine_seconds : 0;
+  for (const auto& p : s.phases)
+    tab.row({"  refine: " + p.name, fixed(p.seconds, 3),
+             refine > 0 ? fixed(100 * p.seconds / refine, 1) + "%" : ""});
+  tab.row({"  read input", fixed(t.read, 3), ""});
+  tab.row({"  initial CDT", fixed(s.cdt_seconds, 3), ""});
+  tab.row({"  refinement", fixed(s.refine_seconds, 3), ""});
+  tab.row({"  mesher total", fixed(s.total_seconds, 3), ""});
+  if (!a.output.empty()) tab.row({"  write output", fixed(t.write, 3), ""});
+  if (report) tab.row({"  check", fixed(t.check, 3), ""});
+  tab.row({"  wall clock", fixed(t.wall, 3), ""});
+  tab.row({"quality", "", ""});
+  tab.row({"  min angle", fixed(s.min_angle_deg, 2) + " deg",
+           a.options.min_angle > 0 ? "bound " + fixed(a.options.min_angle, 2) + " deg" : "no bound"});
+  tab.row({"  bad triangles", with_commas(s.bad_triangles),
+           fixed(s.bad_area_percent, 4) + "% of the area"});
+  if (s.small_angle_bad > 0)
+    tab.row({"    near small input angles", with_commas(s.small_angle_bad), ""});
+  if (s.steiner_cap_reached)
+    tab.row({"  stopped", "Steiner cap reached", with_commas(a.options.max_steiner_points)});
+  if (s.stalled) tab.row({"  stopped", "stalled", "bad elements remain"});
+  if (report) tab.row({"check", report->valid ? "valid" : "INVALID", ""});
+  tab.print(std::cout);
+  if (report) std::cout << "  " << report->summary() << '\n';
+  std::cout.flush();
+}
+
+void write_stats_json(const std::string& path, const Args2d& a, const Refine2dResult& r,
+                      const ValidationReport* report, const CliTimes& t) {
+  std::ofstream out(path);
+  if (!out) throw Error(Status::IoError, path + ": cannot open for writing");
+  const Refine2dStats& s = r.stats;
+  const Refine2dOptions& o = a.options;
+  JsonWriter j(out);
+  j.begin_object();
+  j.field("tool", "gdr 2d");
+  j.field("input", a.input);
+  j.field("output", a.output);
+
+  j.key("options");
+  j.begin_object();
+  j.field("min_angle", o.min_angle);
+  j.field("max_edge_length", o.max_edge_length);
+  j.field("max_area", o.max_area);
+  j.field("max_steiner_points", o.max_steiner_points);
+  j.field("mode", o.mode == EncroachMode::Chew ? "chew" : "ruppert");
+  j.field("off_centers", o.off_centers);
+  j.field("remove_exterior", o.remove_exterior);
+  j.field("split_intersections", o.split_intersections);
+  j.field("refine", o.refine);
+  j.field("backend", to_string(o.backend));
+  j.end_object();
+
+  j.key("stats");
+  j.begin_object();
+  j.field("backend_used", to_string(s.backend_used));
+  j.field("device_name", s.device_name);
+  j.field("iterations", s.iterations);
+  j.field("input_points", s.input_points);
+  j.field("duplicate_points_merged", s.duplicate_points_merged);
+  j.field("input_segments", s.input_segments);
+  j.field("steiner_points", s.steiner_points);
+  j.field("output_points", s.output_points);
+  j.field("output_triangles", s.output_triangles);
+  j.field("bad_triangles", s.bad_triangles);
+  j.field("bad_area_percent", s.bad_area_percent);
+  j.field("small_angle_bad", s.small_angle_bad);
+  j.field("steiner_cap_reached", s.steiner_cap_reached);
+  j.field("stalled", s.stalled);
+  j.field("min_angle_deg", s.min_angle_deg);
+  j.field("cdt_seconds", s.cdt_seconds);
+  j.field("refine_seconds", s.refine_seconds);
+  j.field("total_seconds", s.total_seconds);
+  j.field("peak_device_bytes", static_cast<unsigned long long>(s.peak_device_bytes));
+  j.key("phases");
+  j.begin_array();
+  for (const auto& p : s.phases) {
+    j.begin_object();
+    j.field("name", p.name);
+    j.field("seconds", p.seconds);
+    j.end_object();
+  }
+  j.end_array();
+  j.end_object();
+
+  j.key("cli_seconds");
+  j.begin_object();
+  j.field("read", t.read);
+  j.field("write", t.write);
+  j.field("check", t.check);
+  j.field("wall", t.wall);
+  j.end_object();
+
+  j.key("validation");
+  if (!report) {
+    j.null();
+  } else {
+    const QualityStats& q = report->quality;
+    j.begin_object();
+    j.field("valid", report->valid);
+    j.field("inverted_elements", static_cast<unsigned long long>(report->inverted_elements));
+    j.field("nonmanifold", static_cast<unsigned long long>(report->nonmanifold));
+    j.field("missing_points", static_cast<unsigned long long>(report->missing_points));
+    j.field("missing_segments", static_cast<unsigned long long>(report->missing_segments));
+    j.field("non_delaunay", static_cast<unsigned long long>(report->non_delaunay));
+    j.key("problems");
+    j.begin_array();
+    for (const auto& p : report->problems) j.value(p);
+    j.end_array();
+    j.key("quality");
+    j.begin_object();
+    j.field("elements", static_cast<unsigned long long>(q.elements));
+    j.field("min_angle_deg", q.min_angle_deg);
+    j.field("max_angle_deg", q.max_angle_deg);
+    j.field("max_radius_edge", q.max_radius_edge);
+    j.field("mean_radius_edge", q.mean_radius_edge);
+    j.field("bad_elements", static_cast<unsigned long long>(q.bad_elements));
+    j.field("bad_area_percent", q.bad_measure_percent);
+    j.field("total_area", q.total_measure);
+    j.key("min_angle_histogram");
+    j.begin_array();
+    for (const auto c : q.histogram) j.value(static_cast<unsigned long long>(c));
+    j.end_array();
+    j.end_object();
+    j.field("summary", report->summary());
+    j.end_object();
+  }
+  j.end_object();
+  if (!out) throw Error(Status::IoError, path + ": write failed");
+}
+
+void make_parent_dirs(const std::string& path) {
+  const auto parent = std::filesystem::path(path).parent_path();
+  std::error_code ec;
+  if (!parent.empty()) std::filesystem::create_directories(parent, ec);
+  if (ec) throw Error(Status::IoError, parent.string() + ": cannot create folder: " + ec.message());
+}
+
+Pslg read_input(const std::string& path) {
+  if (!std::filesystem::exists(path)) throw Error(Status::IoError, path + ": no such file");
+  if (io::detect_input_kind(path) != io::InputKind::Pslg2d)
+    throw Error(Status::InvalidInput,
+                path + ": is a 3D surface; 'gdr 2d' needs a 2D planar straight-line graph");
+  return io::read_poly(path);
+}
+
+}  // namespace
+
+int run_2d(const std::vector<std::string>& args) {
+  const Args2d a = parse_2d(args);
+  if (a.help) {
+    std::fputs(kHelp2d, stdout);
+    return kExitOk;
+  }
+  const auto t_start = std::chrono::steady_clock::now();
+  CliTimes t;
+  ProgressBar bar(!a.quiet);
+
+  bar.update(-1, "reading " + a.input);
+  auto t0 = std::chrono::steady_clock::now();
+  const Pslg input = read_input(a.input);
+  t.read = since(t0);
+
+  Callbacks callbacks;
+  callbacks.progress = [&bar](double f, const std::string& phase) { bar.update(f, phase); };
+  if (!a.quiet)
+    callbacks.warning = [&bar](const std::string& m) { bar.message("gdr: warning: " + m); };
+  const Refine2dResult result = refine_2d(input, a.options, callbacks);
+
+  if (!a.output.empty()) {
+    bar.update(-1, "writing " + a.output);
+    t0 = std::chrono::steady_clock::now();
+    make_parent_dirs(a.output);
+    io::write_mesh(a.output, result.mesh, triangle_attributes(result.mesh, a.options.min_angle));
+    t.write = since(t0);
+  }
+
+  ValidationReport report;
+  if (a.check) {
+    bar.update(-1, "checking the mesh");
+    t0 = std::chrono::steady_clock::now();
+    ValidateOptions vo;
+    vo.min_angle_deg = a.options.min_angle;
+    report = validate_trimesh(result.mesh, &input, vo);
+    t.check = since(t0);
+  }
+  t.wall = since(t_start);
+  bar.finish();
+
+  const ValidationReport* rep = a.check ? &report : nullptr;
+  if (!a.stats_json.empty()) {
+    make_parent_dirs(a.stats_json);
+    write_stats_json(a.stats_json, a, result, rep, t);
+  }
+  if (!a.quiet) print_summary(a, input, result, rep, t);
+  if (a.check && !report.valid) {
+    std::fprintf(stderr, "gdr: error: the mesh is invalid (%zu problems listed)\n",
+                 report.problems.size());
+    for (const auto& p : report.problems) std::fprintf(stderr, "  %s\n", p.c_str());
+    return kExitInvalidMesh;
+  }
+  return kExitOk;
+}
+
+}  // namespace gdr::cli

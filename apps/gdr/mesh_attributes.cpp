@@ -1,0 +1,42 @@
+#include "mesh_attributes.h"
+
+#include "gdr/validate.h"
+
+namespace gdr::cli {
+
+io::Attributes triangle_attributes(const TriMesh& mesh, double min_angle_deg) {
+  const long long n = static_cast<long long>(mesh.triangles.size());
+  io::DataArray min_angle{"MinAngle", 1, std::vector<double>(n)};
+  io::DataArray max_angle{"MaxAngle", 1, std::vector<double>(n)};
+  io::DataArray radius_edge{"RadiusEdgeRatio", 1, std::vector<double>(n)};
+  io::DataArray area{"Area", 1, std::vector<double>(n)};
+  io::DataArray is_bad{"IsBad", 1, std::vector<double>(n)};
+
+#pragma omp parallel for schedule(static)
+  for (long long t = 0; t < n; ++t) {
+    const auto& tri = mesh.triangles[t];
+    const Point2& a = mesh.points[tri[0]];
+    const Point2& b = mesh.points[tri[1]];
+    const Point2& c = mesh.points[tri[2]];
+    double lo = 0, hi = 0;
+    triangle_angles(a, b, c, lo, hi);
+    min_angle.values[t] = lo;
+    max_angle.values[t] = hi;
+    radius_edge.values[t] = triangle_radius_edge(a, b, c);
+    area.values[t] = triangle_area(a, b, c);
+    is_bad.values[t] = (min_angle_deg > 0 && lo < min_angle_deg) ? 1.0 : 0.0;
+  }
+
+  io::Attributes attributes;
+  attributes.cell_data = {std::move(min_angle), std::move(max_angle), std::move(radius_edge),
+                          std::move(area), std::move(is_bad)};
+  if (mesh.point_type.size() == mesh.points.size() && !mesh.points.empty()) {
+    io::DataArray type{"PointType", 1, std::vector<double>(mesh.points.size())};
+    for (std::size_t i = 0; i < mesh.points.size(); ++i)
+      type.values[i] = static_cast<double>(mesh.point_type[i]);
+    attributes.point_data.push_back(std::move(type));
+  }
+  return attributes;
+}
+
+}  // namespace gdr::cli
