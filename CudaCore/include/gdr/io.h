@@ -10,13 +10,26 @@ namespace gdr::io {
 
 // Triangle .poly (points, segments, holes; 0- or 1-based as the file says). A .poly whose
 // point section is empty takes its points from the .node file beside it. Also reads .node.
+// Attributes, boundary markers and regional attributes are skipped.
 Pslg read_poly(const std::string& path);
 
-// TetGen .poly / .smesh (facets triangulated into Surface::triangles; polygons fanned
-// only when convex, else an error), .node / .ele, and surfaces as .off and .stl.
+// Triangle .node/.ele as a TriMesh. A .poly with no points beside the .ele (same base name,
+// as write_triangle writes it) gives the subsegments; its segment markers are read back
+// into subsegment_source (-1 when absent).
+TriMesh read_triangle_mesh(const std::string& node_path, const std::string& ele_path);
+
+// TetGen .poly / .smesh: every facet polygon is triangulated by ear clipping in its plane
+// into Surface::triangles (2-corner polygons become Surface::segments). Facet holes and
+// volume holes are refused with an IoError. Surfaces as .off (faces of any size, ear
+// clipped) and .stl (ASCII or binary; exactly identical vertices merged).
 Surface read_tetgen_poly(const std::string& path);
 Surface read_off(const std::string& path);
 Surface read_stl(const std::string& path);   // ASCII or binary
+// Any of the surface formats above, by extension (.off, .stl, .poly, .smesh).
+Surface read_surface(const std::string& path);
+
+// TetGen .node/.ele (4 or 10 nodes per tetrahedron, the first 4 used) as a TetMesh, with the
+// .face beside the .ele, when there is one, as subfaces. Orientation is kept as in the file.
 TetMesh read_tetgen_mesh(const std::string& node_path, const std::string& ele_path);
 
 // Reads any supported input by extension: .poly (2D Triangle or 3D TetGen by its header),

@@ -1,0 +1,268 @@
+// 3D surface readers: TetGen .poly / .smesh / .node / .ele / .face, OFF and STL.
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <unordered_map>
+
+#include "gdr/error.h"
+#include "gdr/io.h"
+#include "io/text_file.h"
+
+namespace gdr::io {
+namespace {
+
+std::vector<Point3> to_points3(const NodeList& nodes) {
+  std::vector<Point3> points(nodes.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+    points[i] = {nodes.coords[3 * i], nodes.coords[3 * i + 1], nodes.coords[3 * i + 2]};
+  return points;
+}
+
+// One facet polygon: a point (ignored), a segment, or a polygon cut into triangles.
+void add_polygon(const TextFile& file, const std::vector<Point3>& points,
+                 const std::vector<int>& polygon, const std::string& what, Surface& surface) {
+  if (polygon.size() == 2) {
+    surface.segments.push_back({polygon[0], polygon[1]});
+  } else if (polygon.size() >= 3 && !triangulate_polygon(points, polygon, surface.triangles)) {
+    file.fail(what + " cannot be triangulated (degenerate or not a simple planar polygon)");
+  }
+}
+
+// "<#corners> c1 ... cn" at the start of `t`; returns the corners, 0-based.
+std::vector<int> read_corners(const TextFile& file, const Tokens& t, int first_index,
+                              std::size_t count, const std::string& what) {
+  const long long n = file.integer(t[0], "corner count of " + what);
+  if (n < 1) file.fail("corner count of " + what + " must be positive, found " + std::to_string(n));
+  if (static_cast<unsigned long long>(n) + 1 > t.size())
+    file.fail(what + " declares " + std::to_string(n) + " corners but lists " +
+              std::to_string(t.size() - 1));
+  std::vector<int> corners(static_cast<std::size_t>(n));
+  for (long long i = 0; i < n; ++i) corners[i] = vertex_index(file, t[1 + i], first_index, count, what);
+  return corners;
+}
+
+}  // namespace
+
+Surface read_tetgen_poly(const std::string& path) {
+  const bool smesh = extension_of(path) == ".smesh";
+  TextFile file(path);
+  const NodeList nodes = read_poly_point_section(file, 3);
+  Surface surface;
+  surface.points = to_points3(nodes);
+  Tokens t;
+  file.expect(t, 1, "the facet count header");
+  const std::size_t facets = file.count(t[0], 2, "facet count");
+  for (std::size_t f = 0; f < facets; ++f) {
+    const std::string what = "facet " + std::to_string(f);
+    if (smesh) {
+      file.expect(t, 2, what);
+      add_polygon(file, surface.points, read_corners(file, t, nodes.first_index, nodes.size(), what), what, surface);
+      continue;
+    }
+    file.expect(t, 1, what);
+    const std::size_t polygons = file.count(t[0], 2, "polygon count of " + what);
+    const long long holes = t.size() > 1 ? file.integer(t[1], "hole count of " + what) : 0;
+    if (holes != 0) file.fail(what + " has holes, which are not supported (split the facet)");
+    for (std::size_t p = 0; p < polygons; ++p) {
+      const std::string pwhat = "polygon " + std::to_string(p) + " of " + what;
+      file.expect(t, 2, pwhat);
+      add_polygon(file, surface.points, read_corners(file, t, nodes.first_index, nodes.size(), pwhat), pwhat, surface);
+    }
+  }
+  // Volume holes cannot be represented by a Surface: refuse rather than mesh them.
+  if (file.next(t) && file.integer(t[0], "hole count") != 0)
+    file.fail("volume holes are not supported");
+  return surface;
+}
+
+TetMesh read_tetgen_mesh(const std::string& node_path, const std::string& ele_path) {
+  const NodeList nodes = read_node_file(node_path, 3);
+  TetMesh mesh;
+  mesh.points = to_points3(nodes);
+  TextFile file(ele_path);
+  Tokens t;
+  file.expect(t, 1, "the tetrahedron count header");
+  const std::size_t n = file.count(t[0], 5, "tetrahedron count");
+  if (t.size() >= 2) {
+    const long long corners = file.integer(t[1], "nodes per tetrahedron");
+    if (corners != 4 && corners != 10)
+      file.fail("nodes per tetrahedron must be 4 or 10, found " + std::to_string(corners));
+  }
+  mesh.tets.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::string what = "tetrahedron " + std::to_string(i);
+    file.expect(t, 5, what);
+    file.integer(t[0], "index of " + what);
+    mesh.tets.push_back({vertex_index(file, t[1], nodes, what), vertex_index(file, t[2], nodes, what),
+                         vertex_index(file, t[3], nodes, what), vertex_index(file, t[4], nodes, what)});
+  }
+  // Boundary / constrained faces, as TetGen and write_tetgen store them beside the .ele.
+  const std::string face_path = strip_extension(ele_path) + ".face";
+  if (file_exists(face_path)) {
+    TextFile faces(face_path);
+    faces.expect(t, 1, "the face count header");
+    const std::size_t nf = faces.count(t[0], 4, "face count");
+    mesh.subfaces.reserve(nf);
+    for (std::size_t i = 0; i < nf; ++i) {
+      const std::string what = "face " + std::to_string(i);
+      faces.expect(t, 4, what);
+      faces.integer(t[0], "index of " + what);
+      mesh.subfaces.push_back({vertex_index(faces, t[1], nodes, what),
+                               vertex_index(faces, t[2], nodes, what),
+                               vertex_index(faces, t[3], nodes, what)});
+    }
+  }
+  return mesh;
+}
+
+Surface read_off(const std::string& path) {
+  TextFile file(path);
+  Tokens t;
+  file.expect(t, 1, "the OFF header");
+  if (t[0] != "OFF") file.fail("expected 'OFF', found '" + std::string(t[0]) + "'");
+  // The counts may follow OFF on the same line.
+  if (t.size() > 1) {
+    t.erase(t.begin());
+  } else {
+    file.expect(t, 2, "the vertex and face counts");
+  }
+  if (t.size() < 2) file.fail("expected the vertex and face counts");
+  const std::size_t nv = file.count(t[0], 3, "vertex count");
+  const std::size_t nf = file.count(t[1], 4, "face count");
+  Surface surface;
+  surface.points.reserve(nv);
+  for (std::size_t i = 0; i < nv; ++i) {
+    const std::string what = "point " + std::to_string(i);
+    file.expect(t, 3, what);
+    surface.points.push_back({file.real(t[0], "x of " + what), file.real(t[1], "y of " + what),
+                              file.real(t[2], "z of " + what)});
+  }
+  surface.triangles.reserve(nf);
+  for (std::size_t i = 0; i < nf; ++i) {
+    const std::string what = "face " + std::to_string(i);
+    file.expect(t, 4, what);
+    std::vector<int> corners = read_corners(file, t, 0, nv, what);
+    if (corners.size() < 3) file.fail(what + " has fewer than 3 corners");
+    if (corners.size() == 3) {
+      surface.triangles.push_back({corners[0], corners[1], corners[2]});
+    } else {
+      add_polygon(file, surface.points, corners, what, surface);
+    }
+  }
+  return surface;
+}
+
+namespace {
+
+struct Key3 {
+  double x, y, z;
+  bool operator==(const Key3& o) const { return x == o.x && y == o.y && z == o.z; }
+};
+struct Key3Hash {
+  std::size_t operator()(const Key3& k) const {
+    auto bits = [](double v) {
+      std::uint64_t b;
+      std::memcpy(&b, &v, sizeof b);
+      return b;
+    };
+    std::uint64_t h = bits(k.x) * 0x9E3779B97F4A7C15ull;
+    h = (h ^ (h >> 29)) + bits(k.y) * 0xBF58476D1CE4E5B9ull;
+    h = (h ^ (h >> 31)) + bits(k.z) * 0x94D049BB133111EBull;
+    return static_cast<std::size_t>(h ^ (h >> 32));
+  }
+};
+
+// Merges exactly identical STL vertices (-0 and +0 are the same point).
+class VertexMerger {
+ public:
+  explicit VertexMerger(Surface& s) : surface_(s) {}
+  int add(double x, double y, double z) {
+    const Key3 key{x + 0.0, y + 0.0, z + 0.0};
+    const auto [it, inserted] = index_.emplace(key, static_cast<int>(surface_.points.size()));
+    if (inserted) surface_.points.push_back({key.x, key.y, key.z});
+    return it->second;
+  }
+
+ private:
+  Surface& surface_;
+  std::unordered_map<Key3, int, Key3Hash> index_;
+};
+
+Surface read_stl_binary(const std::string& path, const std::string& data, std::size_t n) {
+  Surface surface;
+  VertexMerger merger(surface);
+  surface.triangles.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const char* rec = data.data() + 84 + 50 * i;
+    float v[9];
+    std::memcpy(v, rec + 12, sizeof v);
+    std::array<int, 3> tri;
+    for (int k = 0; k < 3; ++k) {
+      for (int d = 0; d < 3; ++d)
+        if (!std::isfinite(v[3 * k + d]))
+          throw Error(Status::IoError, path + ": triangle " + std::to_string(i) +
+                                           " has a non-finite coordinate");
+      tri[k] = merger.add(v[3 * k], v[3 * k + 1], v[3 * k + 2]);
+    }
+    surface.triangles.push_back(tri);
+  }
+  return surface;
+}
+
+Surface read_stl_ascii(const std::string& path, std::string data) {
+  TextFile file(path, std::move(data));
+  Surface surface;
+  VertexMerger merger(surface);
+  Tokens t;
+  auto keyword = [&](const char* word, std::size_t min_tokens) {
+    file.expect(t, min_tokens, std::string("'") + word + "'");
+    if (t[0] != word) file.fail(std::string("expected '") + word + "', found '" + std::string(t[0]) + "'");
+  };
+  keyword("solid", 1);
+  std::size_t facet = 0;
+  while (file.next(t)) {
+    if (t[0] == "endsolid" || t[0] == "solid") continue;  // several solids may follow each other
+    if (t[0] != "facet") file.fail("expected 'facet' or 'endsolid', found '" + std::string(t[0]) + "'");
+    keyword("outer", 2);
+    std::array<int, 3> tri;
+    for (int k = 0; k < 3; ++k) {
+      keyword("vertex", 4);
+      const std::string what = "vertex " + std::to_string(k) + " of facet " + std::to_string(facet);
+      tri[k] = merger.add(file.real(t[1], "x of " + what), file.real(t[2], "y of " + what),
+                          file.real(t[3], "z of " + what));
+    }
+    keyword("endloop", 1);
+    keyword("endfacet", 1);
+    surface.triangles.push_back(tri);
+    ++facet;
+  }
+  return surface;
+}
+
+}  // namespace
+
+Surface read_stl(const std::string& path) {
+  std::string data = read_file_bytes(path);
+  if (data.size() >= 84) {
+    std::uint32_t n = 0;
+    std::memcpy(&n, data.data() + 80, sizeof n);
+    if (84 + 50 * static_cast<std::uint64_t>(n) == data.size()) return read_stl_binary(path, data, n);
+  }
+  const std::size_t start = data.find_first_not_of(" \t\r\n");
+  if (start != std::string::npos && data.compare(start, 5, "solid") == 0) return read_stl_ascii(path, std::move(data));
+  if (data.size() < 84) throw Error(Status::IoError, path + ": too short for a binary STL and not ASCII");
+  throw Error(Status::IoError,
+              path + ": binary STL size " + std::to_string(data.size()) +
+                  " does not match its triangle count (expected 84 + 50 * count bytes)");
+}
+
+Surface read_surface(const std::string& path) {
+  const std::string ext = extension_of(path);
+  if (ext == ".off") return read_off(path);
+  if (ext == ".stl") return read_stl(path);
+  if (ext == ".poly" || ext == ".smesh") return read_tetgen_poly(path);
+  throw Error(Status::IoError, path + ": unsupported surface format '" + ext +
+                                   "' (expected .off, .stl, .poly or .smesh)");
+}
+
+}  // namespace gdr::io

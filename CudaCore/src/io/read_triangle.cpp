@@ -1,0 +1,106 @@
+// Triangle's .poly / .node / .ele readers and input-kind detection.
+#include "gdr/error.h"
+#include "gdr/io.h"
+#include "io/text_file.h"
+
+namespace gdr::io {
+namespace {
+
+std::vector<Point2> to_points2(const NodeList& nodes) {
+  std::vector<Point2> points(nodes.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+    points[i] = {nodes.coords[2 * i], nodes.coords[2 * i + 1]};
+  return points;
+}
+
+// Segments section of a Triangle .poly: "<count> <markers>", then "<i> <a> <b> [marker]".
+void read_segments(TextFile& file, const NodeList& nodes, std::vector<std::array<int, 2>>& segments,
+                   std::vector<int>* markers) {
+  Tokens t;
+  file.expect(t, 1, "the segment count header");
+  const std::size_t n = file.count(t[0], 3, "segment count");
+  segments.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::string what = "segment " + std::to_string(i);
+    file.expect(t, 3, what);
+    file.integer(t[0], "index of " + what);
+    segments.push_back({vertex_index(file, t[1], nodes, what), vertex_index(file, t[2], nodes, what)});
+    if (markers) markers->push_back(t.size() > 3 ? static_cast<int>(file.integer(t[3], "marker of " + what)) : -1);
+  }
+}
+
+}  // namespace
+
+Pslg read_poly(const std::string& path) {
+  Pslg pslg;
+  if (extension_of(path) == ".node") {
+    pslg.points = to_points2(read_node_file(path, 2));
+    return pslg;
+  }
+  TextFile file(path);
+  const NodeList nodes = read_poly_point_section(file, 2);
+  pslg.points = to_points2(nodes);
+  read_segments(file, nodes, pslg.segments, nullptr);
+  Tokens t;
+  file.expect(t, 1, "the hole count header");
+  const std::size_t holes = file.count(t[0], 3, "hole count");
+  for (std::size_t i = 0; i < holes; ++i) {
+    const std::string what = "hole " + std::to_string(i);
+    file.expect(t, 3, what);
+    pslg.holes.push_back({file.real(t[1], "x of " + what), file.real(t[2], "y of " + what)});
+  }
+  return pslg;  // regional attributes, if any, do not matter to the mesher
+}
+
+TriMesh read_triangle_mesh(const std::string& node_path, const std::string& ele_path) {
+  TriMesh mesh;
+  const NodeList nodes = read_node_file(node_path, 2);
+  mesh.points = to_points2(nodes);
+  TextFile file(ele_path);
+  Tokens t;
+  file.expect(t, 1, "the triangle count header");
+  const std::size_t n = file.count(t[0], 4, "triangle count");
+  if (t.size() >= 2) {
+    const long long corners = file.integer(t[1], "nodes per triangle");
+    if (corners != 3 && corners != 6)
+      file.fail("nodes per triangle must be 3 or 6, found " + std::to_string(corners));
+  }
+  mesh.triangles.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::string what = "triangle " + std::to_string(i);
+    file.expect(t, 4, what);
+    file.integer(t[0], "index of " + what);
+    mesh.triangles.push_back({vertex_index(file, t[1], nodes, what),
+                              vertex_index(file, t[2], nodes, what),
+                              vertex_index(file, t[3], nodes, what)});
+  }
+  // Subsegments, as write_triangle stores them: a point-less .poly beside the .ele.
+  const std::string poly_path = strip_extension(ele_path) + ".poly";
+  if (file_exists(poly_path)) {
+    TextFile poly(poly_path);
+    Tokens header;
+    poly.expect(header, 1, "the point count header");
+    if (poly.integer(header[0], "point count") == 0) {
+      read_segments(poly, nodes, mesh.subsegments, &mesh.subsegment_source);
+    }
+  }
+  return mesh;
+}
+
+InputKind detect_input_kind(const std::string& path) {
+  const std::string ext = extension_of(path);
+  if (ext == ".node") return InputKind::Pslg2d;
+  if (ext == ".off" || ext == ".stl" || ext == ".smesh") return InputKind::Surface3d;
+  if (ext != ".poly")
+    throw Error(Status::IoError, path + ": unsupported input format '" + ext +
+                                     "' (expected .poly, .node, .off, .stl or .smesh)");
+  TextFile file(path);
+  Tokens t;
+  file.expect(t, 2, "the point count header");
+  const long long dim = file.integer(t[1], "dimension");
+  if (dim == 2) return InputKind::Pslg2d;
+  if (dim == 3) return InputKind::Surface3d;
+  file.fail("dimension must be 2 or 3, found " + std::to_string(dim));
+}
+
+}  // namespace gdr::io
