@@ -151,47 +151,48 @@ std::string backend_line(const Refine2dStats& s) {
 void print_summary(const Args2d& a, const Pslg& input, const Refine2dResult& r,
                    const ValidationReport* report, const CliTimes& t) {
   const Refine2dStats& s = r.stats;
-  Table tab;
-  tab.row({"gdr 2d summary"});
-  tab.row({"input", a.input, ""});
-  tab.row({"  points", with_commas(static_cast<long long>(input.points.size())),
-           s.duplicate_points_merged ? with_commas(s.duplicate_points_merged) + " duplicates merged"
-                                     : ""});
-  tab.row({"  segments", with_commas(static_cast<long long>(input.segments.size())), ""});
-  tab.row({"  holes", with_commas(static_cast<long long>(input.holes.size())), ""});
-  tab.row({"output", a.output.empty() ? "(not written)" : a.output, ""});
-  tab.row({"  points", with_commas(s.output_points), ""});
-  tab.row({"  triangles", with_commas(s.output_triangles), ""});
-  tab.row({"  Steiner points", with_commas(s.steiner_points),
-           std::to_string(s.iterations) + " iterations"});
-  tab.row({"backend", backend_line(s), ""});
-  tab.row({"peak device memory",
-           s.backend_used == Backend::Gpu ? bytes(s.peak_device_bytes) : "-", ""});
-  tab.row({"time", "seconds", "share"});
-  const double refine = s.refine_seconds > 0 ? s.refine_seconds : 0;
-  for (const auto& p : s.phases)
-    tab.row({"  refine: " + p.name, fixed(p.seconds, 3),
-             refine > 0 ? fixed(100 * p.seconds / refine, 1) + "%" : ""});
-  tab.row({"  read input", fixed(t.read, 3), ""});
-  tab.row({"  initial CDT", fixed(s.cdt_seconds, 3), ""});
-  tab.row({"  refinement", fixed(s.refine_seconds, 3), ""});
-  tab.row({"  mesher total", fixed(s.total_seconds, 3), ""});
-  if (!a.output.empty()) tab.row({"  write output", fixed(t.write, 3), ""});
-  if (report) tab.row({"  check", fixed(t.check, 3), ""});
-  tab.row({"  wall clock", fixed(t.wall, 3), ""});
-  tab.row({"quality", "", ""});
-  tab.row({"  min angle", fixed(s.min_angle_deg, 2) + " deg",
-           a.options.min_angle > 0 ? "bound " + fixed(a.options.min_angle, 2) + " deg" : "no bound"});
-  tab.row({"  bad triangles", with_commas(s.bad_triangles),
-           fixed(s.bad_area_percent, 4) + "% of the area"});
-  if (s.small_angle_bad > 0)
-    tab.row({"    near small input angles", with_commas(s.small_angle_bad), ""});
+  const auto count = [](std::size_t n) { return with_commas(static_cast<long long>(n)); };
+  Table info(Table::Align::Left);
+  info.row({"gdr 2d summary"});
+  info.row({"input", a.input + ": " + count(input.points.size()) + " points, " +
+                         count(input.segments.size()) + " segments, " +
+                         count(input.holes.size()) + " holes"});
+  if (s.duplicate_points_merged > 0)
+    info.row({"", with_commas(s.duplicate_points_merged) + " duplicate points merged"});
+  info.row({"output", (a.output.empty() ? std::string("(not written)") : a.output) + ": " +
+                          with_commas(s.output_points) + " points, " +
+                          with_commas(s.output_triangles) + " triangles"});
+  info.row({"Steiner points", with_commas(s.steiner_points) + " in " +
+                                  std::to_string(s.iterations) + " iterations"});
   if (s.steiner_cap_reached)
-    tab.row({"  stopped", "Steiner cap reached", with_commas(a.options.max_steiner_points)});
-  if (s.stalled) tab.row({"  stopped", "stalled", "bad elements remain"});
-  if (report) tab.row({"check", report->valid ? "valid" : "INVALID", ""});
-  tab.print(std::cout);
-  if (report) std::cout << "  " << report->summary() << '\n';
+    info.row({"", "stopped at the cap of " + with_commas(a.options.max_steiner_points)});
+  if (s.stalled) info.row({"", "stalled: bad elements remain that no point could fix"});
+  info.row({"backend", backend_line(s)});
+  info.row({"peak device memory", s.backend_used == Backend::Gpu ? bytes(s.peak_device_bytes)
+                                                                  : "- (CPU backend)"});
+  info.row({"min angle", fixed(s.min_angle_deg, 2) + " deg (bound " +
+                             (a.options.min_angle > 0 ? fixed(a.options.min_angle, 2) + " deg)"
+                                                      : std::string("off)"))});
+  info.row({"bad triangles", with_commas(s.bad_triangles) + ", " +
+                                 fixed(s.bad_area_percent, 4) + "% of the area"});
+  if (s.small_angle_bad > 0)
+    info.row({"", with_commas(s.small_angle_bad) + " of them next to small input angles"});
+  if (report) info.row({"check", (report->valid ? "valid: " : "INVALID: ") + report->summary()});
+  info.print(std::cout);
+
+  Table times;
+  times.row({"time", "seconds", "share"});
+  times.row({"  initial CDT", fixed(s.cdt_seconds, 3), ""});
+  times.row({"  refinement", fixed(s.refine_seconds, 3), ""});
+  for (const auto& p : s.phases)
+    times.row({"    " + p.name, fixed(p.seconds, 3),
+               s.refine_seconds > 0 ? fixed(100 * p.seconds / s.refine_seconds, 1) + "%" : ""});
+  times.row({"  mesher total", fixed(s.total_seconds, 3), ""});
+  times.row({"  read input", fixed(t.read, 3), ""});
+  if (!a.output.empty()) times.row({"  write output", fixed(t.write, 3), ""});
+  if (report) times.row({"  check", fixed(t.check, 3), ""});
+  times.row({"  wall clock", fixed(t.wall, 3), ""});
+  times.print(std::cout);
   std::cout.flush();
 }
 
