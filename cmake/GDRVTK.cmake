@@ -1,1 +1,72 @@
-# VTK module, Python package and ParaView plugin (added by its owner)
+# VTK module (Filters/), Python package `gpudelaunay` and ParaView plugin (Plugin/).
+# Included from the top-level CMakeLists.txt once ParaView 5.11 has been found.
+include(GNUInstallDirs)
+
+# Shared libraries: the ParaView plugin and the Python package load one and the same
+# filter library (VTK's module and plugin functions follow BUILD_SHARED_LIBS).
+set(_gdr_saved_build_shared_libs "${BUILD_SHARED_LIBS}")
+set(BUILD_SHARED_LIBS ON)
+
+# --- VTK module ---------------------------------------------------------------
+vtk_module_scan(
+  MODULE_FILES     "${PROJECT_SOURCE_DIR}/Filters/vtk.module"
+  REQUEST_MODULES  GPUDelaunay::GPUDelaunayFilters
+  PROVIDES_MODULES gdr_vtk_modules
+  HIDE_MODULES_FROM_CACHE ON)
+
+vtk_module_build(
+  MODULES             ${gdr_vtk_modules}
+  PACKAGE             GPUDelaunay
+  ENABLE_WRAPPING     ON
+  INSTALL_HEADERS     OFF
+  LIBRARY_DESTINATION "${CMAKE_INSTALL_LIBDIR}"
+  RUNTIME_DESTINATION "${CMAKE_INSTALL_BINDIR}"
+  ARCHIVE_DESTINATION "${CMAKE_INSTALL_LIBDIR}"
+  CMAKE_DESTINATION   "${CMAKE_INSTALL_LIBDIR}/cmake/GPUDelaunay")
+
+# --- Python package `gpudelaunay` ----------------------------------------------
+# Build tree: <build>/python/gpudelaunay; set PYTHONPATH=<build>/python.
+find_package(Python3 REQUIRED COMPONENTS Interpreter Development.Module)
+set(GDR_PYTHON_DESTINATION "python" CACHE STRING
+  "Where the gpudelaunay Python package goes (relative to the build and install prefix)")
+mark_as_advanced(GDR_PYTHON_DESTINATION)
+vtk_module_wrap_python(
+  MODULES            ${gdr_vtk_modules}
+  TARGET             GPUDelaunay::Python
+  PYTHON_PACKAGE     gpudelaunay
+  MODULE_DESTINATION "${GDR_PYTHON_DESTINATION}"
+  LIBRARY_DESTINATION "${CMAKE_INSTALL_LIBDIR}"
+  CMAKE_DESTINATION  "${CMAKE_INSTALL_LIBDIR}/cmake/GPUDelaunay"
+  INSTALL_HEADERS    OFF
+  BUILD_STATIC       OFF)
+
+# The package's __init__: imports VTK's base modules first, then the wrapped classes.
+set(_gdr_python_init "${CMAKE_BINARY_DIR}/${GDR_PYTHON_DESTINATION}/gpudelaunay/__init__.py")
+file(GENERATE OUTPUT "${_gdr_python_init}" CONTENT
+"\"\"\"GPU Delaunay mesh refinement filters for VTK (vtkGPUConstrainedDelaunay2D).\"\"\"
+import vtkmodules.vtkCommonExecutionModel  # noqa: F401  (base classes)
+from .GPUDelaunayFilters import *  # noqa: F401,F403
+")
+install(FILES "${_gdr_python_init}" DESTINATION "${GDR_PYTHON_DESTINATION}/gpudelaunay")
+
+# --- ParaView plugin GPUDelaunayRefinement ---------------------------------------
+paraview_plugin_scan(
+  PLUGIN_FILES      "${PROJECT_SOURCE_DIR}/Plugin/paraview.plugin"
+  PROVIDES_PLUGINS  gdr_paraview_plugins
+  ENABLE_BY_DEFAULT ON
+  HIDE_PLUGINS_FROM_CACHE ON)
+
+set(GDR_PLUGIN_SUBDIR "paraview-${ParaView_VERSION_MAJOR}.${ParaView_VERSION_MINOR}/plugins")
+paraview_plugin_build(
+  PLUGINS             ${gdr_paraview_plugins}
+  RUNTIME_DESTINATION "${CMAKE_INSTALL_BINDIR}"
+  LIBRARY_DESTINATION "${CMAKE_INSTALL_LIBDIR}"
+  LIBRARY_SUBDIRECTORY "${GDR_PLUGIN_SUBDIR}"
+  AUTOLOAD            GPUDelaunayRefinement
+  ADD_INSTALL_RPATHS  ON)
+
+# Where tests and scripts find the built pieces.
+set(GDR_PLUGIN_DIR "${CMAKE_BINARY_DIR}/${CMAKE_INSTALL_LIBDIR}/${GDR_PLUGIN_SUBDIR}/GPUDelaunayRefinement")
+set(GDR_PYTHON_DIR "${CMAKE_BINARY_DIR}/${GDR_PYTHON_DESTINATION}")
+
+set(BUILD_SHARED_LIBS "${_gdr_saved_build_shared_libs}")

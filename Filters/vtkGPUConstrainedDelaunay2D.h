@@ -1,0 +1,166 @@
+/**
+ * @class   vtkGPUConstrainedDelaunay2D
+ * @brief   quality 2D constrained (Ruppert) or conforming (Chew) Delaunay refinement
+ *
+ * vtkGPUConstrainedDelaunay2D meshes a planar straight-line graph (PSLG) given in the
+ * z = constant plane with the gDP2d refinement algorithm of Chen & Tan, "Delaunay Mesh
+ * Refinement on the GPU", on a CUDA GPU or, with the same algorithm, on the CPU.
+ *
+ * Input (port 0, vtkPolyData): every line and polyline segment is a constrained
+ * segment, every polygon contributes its edges (closing edge included) as segments,
+ * and vertex cells are isolated input points. A polydata with no cells at all gives
+ * all of its points as input points. Only x and y are used.
+ * Input (port 1, optional, any vtkDataSet): its points are hole seeds; the region
+ * enclosed by segments around each seed is removed.
+ *
+ * Output (port 0, vtkPolyData): counter-clockwise triangles. Cell data: MinAngle and
+ * MaxAngle (degrees), RadiusEdgeRatio (circumradius over shortest edge), Area, IsBad
+ * (1 where MinAngle < MinimumAngle). Point data: PointType (0 input point, 1 Steiner
+ * point on a segment, 2 free Steiner point). Field data: the run's statistics
+ * (Backend, DeviceName, Iterations, SteinerPoints, BadTriangles, BadAreaPercent,
+ * MinimumAngleReached, TotalSeconds, CDTSeconds, RefineSeconds, and the per-phase
+ * times as the parallel arrays PhaseNames / PhaseSeconds).
+ * Output (port 1, vtkTable): a histogram of MinAngle in 1-degree bins over [0, 60]
+ * with the columns bin_extents (bin center, degrees) and bin_values (number of
+ * triangles), named like the output of ParaView's Histogram filter.
+ *
+ * Errors of the engine (crossing segments, no GPU for Backend=GPU, out of memory...)
+ * are reported with vtkErrorMacro and leave empty outputs. An aborted run also leaves
+ * empty outputs.
+ */
+
+#ifndef vtkGPUConstrainedDelaunay2D_h
+#define vtkGPUConstrainedDelaunay2D_h
+
+#include "GPUDelaunayFiltersModule.h" // for export macro
+#include "vtkPolyDataAlgorithm.h"
+
+class GPUDELAUNAYFILTERS_EXPORT vtkGPUConstrainedDelaunay2D : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkGPUConstrainedDelaunay2D* New();
+  vtkTypeMacro(vtkGPUConstrainedDelaunay2D, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// Segment encroachment rule: diametral circle (Ruppert) or diametral lens (Chew).
+  enum Modes
+  {
+    RUPPERT = 0,
+    CHEW = 1
+  };
+
+  /// Where the refinement runs. AUTO uses the GPU when one is usable, else the CPU
+  /// (with a warning); GPU fails with an error when no usable device is present.
+  enum Backends
+  {
+    AUTO = 0,
+    GPU = 1,
+    CPU = 2
+  };
+
+  ///@{
+  /**
+   * Lower bound on the angles of the output triangles, in degrees. 0 disables the
+   * angle criterion. Clamped to [0, 34]. Default 20.
+   */
+  vtkSetClampMacro(MinimumAngle, double, 0.0, 34.0);
+  vtkGetMacro(MinimumAngle, double);
+  ///@}
+
+  ///@{
+  /**
+   * Upper bound on the edge length of the output triangles; 0 (default) disables it.
+   */
+  vtkSetClampMacro(MaximumEdgeLength, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(MaximumEdgeLength, double);
+  ///@}
+
+  ///@{
+  /**
+   * Upper bound on the area of the output triangles; 0 (default) disables it.
+   */
+  vtkSetClampMacro(MaximumArea, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(MaximumArea, double);
+  ///@}
+
+  ///@{
+  /**
+   * Cap on the number of Steiner points; refinement stops cleanly when it is reached.
+   * -1 (default) means unlimited.
+   */
+  vtkSetClampMacro(MaximumSteinerPoints, vtkIdType, -1, VTK_ID_MAX);
+  vtkGetMacro(MaximumSteinerPoints, vtkIdType);
+  ///@}
+
+  ///@{
+  /**
+   * Encroachment mode: RUPPERT (constrained Delaunay, default) or CHEW.
+   */
+  vtkSetClampMacro(Mode, int, RUPPERT, CHEW);
+  vtkGetMacro(Mode, int);
+  void SetModeToRuppert() { this->SetMode(RUPPERT); }
+  void SetModeToChew() { this->SetMode(CHEW); }
+  ///@}
+
+  ///@{
+  /**
+   * Execution backend: AUTO (default), GPU or CPU.
+   */
+  vtkSetClampMacro(Backend, int, AUTO, CPU);
+  vtkGetMacro(Backend, int);
+  void SetBackendToAuto() { this->SetBackend(AUTO); }
+  void SetBackendToGPU() { this->SetBackend(GPU); }
+  void SetBackendToCPU() { this->SetBackend(CPU); }
+  ///@}
+
+  ///@{
+  /**
+   * Keep only the triangles enclosed by segments (and outside holes). Default off.
+   */
+  vtkSetMacro(RemoveExterior, vtkTypeBool);
+  vtkGetMacro(RemoveExterior, vtkTypeBool);
+  vtkBooleanMacro(RemoveExterior, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * Split crossing segments at their intersection instead of refusing the input.
+   * Default off.
+   */
+  vtkSetMacro(SplitIntersections, vtkTypeBool);
+  vtkGetMacro(SplitIntersections, vtkTypeBool);
+  vtkBooleanMacro(SplitIntersections, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * Optional hole seed points (input port 1).
+   */
+  void SetHoleSeedsConnection(vtkAlgorithmOutput* output);
+  void SetHoleSeedsData(vtkDataObject* data);
+  ///@}
+
+protected:
+  vtkGPUConstrainedDelaunay2D();
+  ~vtkGPUConstrainedDelaunay2D() override = default;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int FillOutputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+
+  double MinimumAngle = 20.0;
+  double MaximumEdgeLength = 0.0;
+  double MaximumArea = 0.0;
+  vtkIdType MaximumSteinerPoints = -1;
+  int Mode = RUPPERT;
+  int Backend = AUTO;
+  vtkTypeBool RemoveExterior = false;
+  vtkTypeBool SplitIntersections = false;
+
+private:
+  vtkGPUConstrainedDelaunay2D(const vtkGPUConstrainedDelaunay2D&) = delete;
+  void operator=(const vtkGPUConstrainedDelaunay2D&) = delete;
+};
+
+#endif
