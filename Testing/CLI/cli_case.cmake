@@ -1,7 +1,10 @@
 # Runs one gdr command line and checks its exit code, output and files.
 # -DGDR=exe -DARGS=list -DWORK=dir [-DRC=n] [-DMATCH=regex] [-DNO_OUTPUT=1]
 # [-DFILES=list of files that must exist] [-DJSON=file] [-DJSON_EQUAL=list of path=value]
-# [-DJSON_POSITIVE=list of path]; JSON paths are members separated by '/'.
+# [-DJSON_POSITIVE=list of path]; lists are joined by '|', JSON paths separate members by '/'.
+foreach(var ARGS FILES JSON_EQUAL JSON_POSITIVE)
+  string(REPLACE "|" ";" ${var} "${${var}}")
+endforeach()
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
 if(NOT DEFINED RC)
