@@ -25,7 +25,6 @@ std::string build_summary() {
   else
     s += ", no CUDA backend (CPU only)";
   s += ", OpenMP CPU backend";
-  s += GDR_WITH_CGAL ? ", CGAL initial CDT" : ", built-in initial CDT (no CGAL)";
   return s;
 }
 
