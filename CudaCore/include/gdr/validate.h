@@ -3,6 +3,15 @@
 // conformity is checked through the mesh's subsegment structure with a tiny relative
 // tolerance on collinearity; the (constrained) Delaunay property is exact on the stored
 // coordinates.
+//
+// Orientation conventions (pred:: are Shewchuk's predicates, signs exact):
+//  - a triangle (a,b,c) is valid when orient2d(a,b,c) > 0 (counter-clockwise);
+//  - a tetrahedron (a,b,c,d) is positively oriented when orient3d(a,b,c,d) > 0 in Shewchuk's
+//    convention, i.e. d lies below the plane of a,b,c (a,b,c counter-clockwise seen from
+//    the side away from d). Its faces seen from outside, counter-clockwise, are then
+//    (a,b,c), (a,d,b), (b,d,c), (a,c,d). With that orientation insphere(a,b,c,d,e) > 0 iff e
+//    is strictly inside the circumsphere, which is what the Delaunay check uses.
+// Counters count every occurrence; only the first max_problems messages are kept.
 #pragma once
 #include <cstddef>
 #include <string>
@@ -33,6 +42,12 @@ struct ValidationReport {
   std::size_t missing_segments = 0;   // input segments not recovered as subsegment chains
   std::size_t missing_facets = 0;     // 3D: input facets not covered by subfaces
   std::size_t non_delaunay = 0;       // locally non-(constrained-)Delaunay edges / faces
+  std::size_t invalid_indices = 0;    // elements with a vertex index out of range
+  std::size_t invalid_subsegments = 0;  // subsegments that are not mesh edges
+  std::size_t invalid_subfaces = 0;   // 3D: subfaces that are not mesh faces
+  std::size_t boundary_errors = 0;    // 3D: boundary edges not shared by exactly two boundary
+                                      // faces, and (when subfaces are given) boundary faces
+                                      // that are not subfaces
   QualityStats quality;
   std::string summary() const;        // one paragraph for logs and the CLI
 };
@@ -46,13 +61,18 @@ struct ValidateOptions {
   std::size_t max_problems = 20;      // cap on problem messages
 };
 
-// 2D: counter-clockwise triangles, manifold edges, every input point and segment present
-// (a chain of subsegments), every non-subsegment interior edge locally Delaunay.
+// 2D: counter-clockwise triangles, manifold edges (two triangles sharing an edge must lie on
+// opposite sides of it), every input point present (exact coordinates), every input segment
+// a chain of TriMesh::subsegments, every interior edge that is not a subsegment locally
+// Delaunay (exact incircle). `input` may be null (no conformity check).
 ValidationReport validate_trimesh(const TriMesh& mesh, const Pslg* input,
                                   const ValidateOptions& options = {});
 
-// 3D: positive tetrahedra, manifold faces, input facets covered by subfaces,
-// locally Delaunay faces that are not subfaces.
+// 3D: positive tetrahedra, manifold faces, a closed manifold boundary (every subface a
+// mesh face; every boundary face a subface when subfaces are given), every input point
+// present, every input segment a chain of TetMesh::subsegments, every input triangle covered
+// by subfaces in its plane (area sum within 1e-6 relative), and interior faces that are not
+// subfaces locally Delaunay (exact insphere).
 ValidationReport validate_tetmesh(const TetMesh& mesh, const Surface* input,
                                   const ValidateOptions& options = {});
 
@@ -64,6 +84,11 @@ QualityStats tet_quality(const TetMesh& mesh, double max_radius_edge = 0);
 void triangle_angles(const Point2& a, const Point2& b, const Point2& c, double& min_deg,
                      double& max_deg);
 double triangle_radius_edge(const Point2& a, const Point2& b, const Point2& c);
-double triangle_area(const Point2& a, const Point2& b, const Point2& c);
+double triangle_area(const Point2& a, const Point2& b, const Point2& c);  // > 0 if ccw
+double tet_volume(const Point3& a, const Point3& b, const Point3& c, const Point3& d);  // > 0 if positive
+double tet_radius_edge(const Point3& a, const Point3& b, const Point3& c, const Point3& d);
+// The six dihedral angles in degrees, at edges ab, ac, ad, bc, bd, cd.
+void tet_dihedral_angles(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
+                         double angles_deg[6]);
 
 }  // namespace gdr

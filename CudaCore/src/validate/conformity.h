@@ -1,0 +1,118 @@
+// Conformity helpers shared by the 2D and 3D validators: finding input points in the mesh by
+// exact coordinates, and following an input segment along the mesh's subsegment chain.
+#pragma once
+#include <cmath>
+#include <cstring>
+#include <unordered_map>
+
+#include "gdr/pslg.h"
+#include "validate/incidence.h"
+
+namespace gdr::validate {
+
+inline std::array<double, 3> xyz(const Point2& p) { return {p.x, p.y, 0.0}; }
+inline std::array<double, 3> xyz(const Point3& p) { return {p.x, p.y, p.z}; }
+
+struct CoordKey {
+  std::array<double, 3> c;
+  bool operator==(const CoordKey& o) const { return c == o.c; }
+};
+struct CoordHash {
+  std::size_t operator()(const CoordKey& k) const {
+    std::uint64_t h = 0x243F6A8885A308D3ull;
+    for (double v : k.c) {
+      const double z = v + 0.0;  // -0 and +0 are the same coordinate
+      std::uint64_t b;
+      std::memcpy(&b, &z, sizeof b);
+      h = (h ^ b) * 0x9E3779B97F4A7C15ull;
+      h ^= h >> 31;
+    }
+    return static_cast<std::size_t>(h);
+  }
+};
+
+// For every input point, the mesh vertex with exactly its coordinates (-1 if none). Input
+// duplicates share one representative; `representative[i]` is its index.
+template <class P>
+std::vector<int> locate_input_points(const std::vector<P>& input, const std::vector<P>& mesh,
+                                     std::vector<int>& representative) {
+  std::unordered_map<CoordKey, int, CoordHash> index;
+  index.reserve(input.size());
+  representative.resize(input.size());
+  for (std::size_t i = 0; i < input.size(); ++i)
+    representative[i] = index.emplace(CoordKey{xyz(input[i])}, static_cast<int>(i)).first->second;
+  std::vector<int> found(input.size(), -1);
+  const std::int64_t n = static_cast<std::int64_t>(mesh.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t v = 0; v < n; ++v) {
+    const auto it = index.find(CoordKey{xyz(mesh[v])});
+    if (it == index.end()) continue;
+    // The smallest mesh vertex wins, so the result does not depend on the thread schedule.
+    int* slot = &found[it->second];
+    int old = __atomic_load_n(slot, __ATOMIC_RELAXED);
+    while ((old < 0 || old > v) &&
+           !__atomic_compare_exchange_n(slot, &old, static_cast<int>(v), true, __ATOMIC_RELAXED,
+                                        __ATOMIC_RELAXED)) {
+    }
+  }
+  return found;
+}
+
+// Vertex -> subsegment neighbours (CSR).
+struct SubsegmentGraph {
+  std::vector<std::size_t> start;
+  std::vector<int> next;
+  SubsegmentGraph(std::size_t vertices, const std::vector<std::array<int, 2>>& subsegments)
+      : start(vertices + 1, 0) {
+    auto ok = [&](const std::array<int, 2>& s) {
+      return s[0] >= 0 && s[1] >= 0 && static_cast<std::size_t>(s[0]) < vertices &&
+             static_cast<std::size_t>(s[1]) < vertices && s[0] != s[1];
+    };
+    for (const auto& s : subsegments)
+      if (ok(s)) ++start[s[0] + 1], ++start[s[1] + 1];
+    for (std::size_t v = 0; v < vertices; ++v) start[v + 1] += start[v];
+    next.resize(start[vertices]);
+    std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+    for (const auto& s : subsegments)
+      if (ok(s)) next[fill[s[0]]++] = s[1], next[fill[s[1]]++] = s[0];
+  }
+};
+
+// True when a chain of subsegments leads from mesh vertex a to b, every intermediate vertex
+// within `tolerance * |ab|` of segment ab and strictly progressing from a towards b.
+template <class P>
+bool follow_segment(const std::vector<P>& points, const SubsegmentGraph& graph, int a, int b,
+                    double tolerance) {
+  const auto pa = xyz(points[a]), pb = xyz(points[b]);
+  const double d[3] = {pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]};
+  const double len2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+  int cur = a;
+  double progress = 0;
+  while (cur != b) {
+    int best = -1;
+    double best_t = 2;
+    for (std::size_t k = graph.start[cur]; k < graph.start[cur + 1]; ++k) {
+      const int w = graph.next[k];
+      if (w == b) {
+        best = b;
+        break;
+      }
+      const auto pw = xyz(points[w]);
+      const double r[3] = {pw[0] - pa[0], pw[1] - pa[1], pw[2] - pa[2]};
+      const double t = (r[0] * d[0] + r[1] * d[1] + r[2] * d[2]) / len2;
+      if (!(t > progress && t < 1 && t < best_t)) continue;
+      const double cx = r[1] * d[2] - r[2] * d[1], cy = r[2] * d[0] - r[0] * d[2],
+                   cz = r[0] * d[1] - r[1] * d[0];
+      // |r x d| / |d| is the distance from the line; compare squares to avoid roots.
+      if (cx * cx + cy * cy + cz * cz > tolerance * tolerance * len2 * len2) continue;
+      best = w;
+      best_t = t;
+    }
+    if (best < 0) return false;
+    cur = best;
+    progress = best_t;
+  }
+  return true;
+}
+
+}  // namespace gdr::validate
