@@ -1,0 +1,566 @@
+// Filter tests for vtkGPUConstrainedDelaunay2D. Each test is one ctest entry:
+//   TestGPUConstrainedDelaunay2D <test name>
+// The meshes are converted back to gdr::TriMesh by this file (independently of the
+// filter's converter) and checked with the core validator gdr::validate_trimesh.
+#include "vtkGPUConstrainedDelaunay2D.h"
+
+#include "vtkCallbackCommand.h"
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkCommand.h"
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+#include "vtkStringArray.h"
+#include "vtkTable.h"
+#include "vtkXMLPolyDataReader.h"
+
+#include "gdr/backend.h"
+#include "gdr/pslg.h"
+#include "gdr/validate.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <iostream>
+#include <map>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace
+{
+int Failures = 0;
+
+#define CHECK(cond)                                                                           \
+  do                                                                                          \
+  {                                                                                           \
+    if (!(cond))                                                                              \
+    {                                                                                         \
+      std::cerr << __FILE__ << ":" << __LINE__ << ": check failed: " #cond << std::endl;      \
+      ++Failures;                                                                             \
+    }                                                                                         \
+  } while (false)
+
+// Records error and warning events of a filter.
+struct EventLog
+{
+  std::vector<std::string> Errors;
+  std::vector<std::string> Warnings;
+
+  void Watch(vtkObject* object)
+  {
+    vtkNew<vtkCallbackCommand> cb;
+    cb->SetClientData(this);
+    cb->SetCallback(
+      [](vtkObject*, unsigned long event, void* client, void* data)
+      {
+        auto* self = static_cast<EventLog*>(client);
+        const std::string text = data ? static_cast<const char*>(data) : "";
+        (event == vtkCommand::ErrorEvent ? self->Errors : self->Warnings).push_back(text);
+      });
+    object->AddObserver(vtkCommand::ErrorEvent, cb);
+    object->AddObserver(vtkCommand::WarningEvent, cb);
+  }
+  bool ErrorContains(const std::string& s) const
+  {
+    return std::any_of(Errors.begin(), Errors.end(),
+      [&](const std::string& e) { return e.find(s) != std::string::npos; });
+  }
+};
+
+vtkSmartPointer<vtkPolyData> ReadPlate()
+{
+  vtkNew<vtkXMLPolyDataReader> reader;
+  reader->SetFileName(GDR_TEST_PLATE);
+  reader->Update();
+  return reader->GetOutput();
+}
+
+// The PSLG as this test sees the polydata: every point, line/polyline pieces and polygon
+// edges as segments.
+gdr::Pslg PslgOf(vtkPolyData* pd)
+{
+  gdr::Pslg pslg;
+  for (vtkIdType i = 0; i < pd->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    pd->GetPoint(i, p);
+    pslg.points.push_back({ p[0], p[1] });
+  }
+  vtkIdType n;
+  const vtkIdType* ids;
+  for (pd->GetLines()->InitTraversal(); pd->GetLines()->GetNextCell(n, ids);)
+  {
+    for (vtkIdType i = 0; i + 1 < n; ++i)
+    {
+      pslg.segments.push_back({ int(ids[i]), int(ids[i + 1]) });
+    }
+  }
+  for (pd->GetPolys()->InitTraversal(); pd->GetPolys()->GetNextCell(n, ids);)
+  {
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      pslg.segments.push_back({ int(ids[i]), int(ids[(i + 1) % n]) });
+    }
+  }
+  return pslg;
+}
+
+bool OnSegment(const gdr::Point2& p, const gdr::Point2& a, const gdr::Point2& b)
+{
+  const double dx = b.x - a.x, dy = b.y - a.y;
+  const double len2 = dx * dx + dy * dy;
+  const double t = ((p.x - a.x) * dx + (p.y - a.y) * dy) / len2;
+  const double cross = (p.x - a.x) * dy - (p.y - a.y) * dx;
+  return t >= -1e-12 && t <= 1 + 1e-12 && std::fabs(cross) <= 1e-9 * len2;
+}
+
+// Output polydata -> TriMesh, with subsegments recovered as the mesh edges lying on an
+// input segment.
+gdr::TriMesh TriMeshOf(vtkPolyData* out, const gdr::Pslg& input)
+{
+  gdr::TriMesh mesh;
+  for (vtkIdType i = 0; i < out->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    out->GetPoint(i, p);
+    mesh.points.push_back({ p[0], p[1] });
+  }
+  vtkIdType n;
+  const vtkIdType* ids;
+  std::set<std::pair<int, int>> edges;
+  for (out->GetPolys()->InitTraversal(); out->GetPolys()->GetNextCell(n, ids);)
+  {
+    CHECK(n == 3);
+    if (n != 3)
+    {
+      continue;
+    }
+    mesh.triangles.push_back({ int(ids[0]), int(ids[1]), int(ids[2]) });
+    for (int k = 0; k < 3; ++k)
+    {
+      edges.insert(std::minmax(int(ids[k]), int(ids[(k + 1) % 3])));
+    }
+  }
+  if (vtkDataArray* type = out->GetPointData()->GetArray("PointType"))
+  {
+    for (vtkIdType i = 0; i < type->GetNumberOfTuples(); ++i)
+    {
+      mesh.point_type.push_back(static_cast<gdr::PointType>(int(type->GetComponent(i, 0))));
+    }
+  }
+  for (const auto& e : edges)
+  {
+    for (std::size_t s = 0; s < input.segments.size(); ++s)
+    {
+      const gdr::Point2& a = input.points[input.segments[s][0]];
+      const gdr::Point2& b = input.points[input.segments[s][1]];
+      if (OnSegment(mesh.points[e.first], a, b) && OnSegment(mesh.points[e.second], a, b))
+      {
+        mesh.subsegments.push_back({ e.first, e.second });
+        mesh.subsegment_source.push_back(int(s));
+        break;
+      }
+    }
+  }
+  return mesh;
+}
+
+double PolygonArea(const std::vector<gdr::Point2>& p)
+{
+  double a = 0;
+  for (std::size_t i = 0; i < p.size(); ++i)
+  {
+    const gdr::Point2& u = p[i];
+    const gdr::Point2& v = p[(i + 1) % p.size()];
+    a += u.x * v.y - v.x * u.y;
+  }
+  return 0.5 * std::fabs(a);
+}
+
+double ArraySum(vtkDataArray* a)
+{
+  double s = 0;
+  for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
+  {
+    s += a->GetComponent(i, 0);
+  }
+  return s;
+}
+
+// Checks the arrays of a successful run: sizes, ranges, IsBad, histogram, field data.
+void CheckArrays(vtkGPUConstrainedDelaunay2D* filter)
+{
+  vtkPolyData* out = filter->GetOutput();
+  const vtkIdType ncells = out->GetNumberOfCells();
+  CHECK(ncells > 0);
+  CHECK(out->GetNumberOfPolys() == ncells);
+  vtkCellData* cd = out->GetCellData();
+  for (const char* name : { "MinAngle", "MaxAngle", "RadiusEdgeRatio", "Area", "IsBad" })
+  {
+    vtkDataArray* a = cd->GetArray(name);
+    CHECK(a != nullptr);
+    if (a)
+    {
+      CHECK(a->GetNumberOfTuples() == ncells);
+    }
+  }
+  vtkDataArray* minAngle = cd->GetArray("MinAngle");
+  vtkDataArray* maxAngle = cd->GetArray("MaxAngle");
+  vtkDataArray* ratio = cd->GetArray("RadiusEdgeRatio");
+  vtkDataArray* area = cd->GetArray("Area");
+  vtkDataArray* bad = cd->GetArray("IsBad");
+  if (!minAngle || !maxAngle || !ratio || !area || !bad)
+  {
+    return;
+  }
+  vtkIdType nbad = 0;
+  for (vtkIdType c = 0; c < ncells; ++c)
+  {
+    const double lo = minAngle->GetComponent(c, 0);
+    const double hi = maxAngle->GetComponent(c, 0);
+    CHECK(lo > 0 && lo <= 60 + 1e-9);
+    CHECK(hi >= 60 - 1e-9 && hi < 180);
+    CHECK(ratio->GetComponent(c, 0) >= 1 / std::sqrt(3.0) - 1e-9);
+    CHECK(area->GetComponent(c, 0) > 0);
+    const bool isBad = bad->GetComponent(c, 0) != 0;
+    CHECK(isBad == (lo < filter->GetMinimumAngle()));
+    nbad += isBad ? 1 : 0;
+  }
+  vtkDataArray* type = out->GetPointData()->GetArray("PointType");
+  CHECK(type != nullptr);
+  if (type)
+  {
+    CHECK(type->GetNumberOfTuples() == out->GetNumberOfPoints());
+    double range[2];
+    type->GetRange(range);
+    CHECK(range[0] >= 0 && range[1] <= 2);
+  }
+
+  vtkTable* histogram = vtkTable::SafeDownCast(filter->GetOutputDataObject(1));
+  CHECK(histogram != nullptr);
+  if (histogram)
+  {
+    CHECK(histogram->GetNumberOfRows() == 60);
+    vtkDataArray* centers = vtkDataArray::SafeDownCast(histogram->GetColumnByName("bin_extents"));
+    vtkDataArray* counts = vtkDataArray::SafeDownCast(histogram->GetColumnByName("bin_values"));
+    CHECK(centers && counts);
+    if (centers && counts)
+    {
+      CHECK(centers->GetComponent(0, 0) == 0.5 && centers->GetComponent(59, 0) == 59.5);
+      CHECK(ArraySum(counts) == double(ncells));
+    }
+  }
+
+  vtkFieldData* fd = out->GetFieldData();
+  auto* backend = vtkStringArray::SafeDownCast(fd->GetAbstractArray("Backend"));
+  CHECK(backend && backend->GetNumberOfValues() == 1);
+  if (backend && !gdr::gpu_available())
+  {
+    CHECK(backend->GetValue(0) == "cpu");
+  }
+  for (const char* name : { "Iterations", "SteinerPoints", "BadTriangles", "BadAreaPercent",
+         "TotalSeconds", "MinimumAngleReached", "PhaseSeconds" })
+  {
+    CHECK(fd->GetArray(name) != nullptr);
+  }
+  auto* phases = vtkStringArray::SafeDownCast(fd->GetAbstractArray("PhaseNames"));
+  CHECK(phases && fd->GetArray("PhaseSeconds") &&
+    phases->GetNumberOfValues() == fd->GetArray("PhaseSeconds")->GetNumberOfTuples());
+  if (vtkDataArray* steiner = fd->GetArray("SteinerPoints"))
+  {
+    CHECK(out->GetNumberOfPoints() >= steiner->GetComponent(0, 0));
+  }
+}
+
+void Validate(vtkPolyData* out, const gdr::Pslg& input, double minAngle, bool expectQuality)
+{
+  const gdr::TriMesh mesh = TriMeshOf(out, input);
+  gdr::ValidateOptions options;
+  options.min_angle_deg = minAngle;
+  const gdr::ValidationReport report = gdr::validate_trimesh(mesh, &input, options);
+  if (!report.valid)
+  {
+    std::cerr << report.summary() << std::endl;
+  }
+  CHECK(report.valid);
+  CHECK(report.missing_points == 0 && report.missing_segments == 0);
+  if (expectQuality)
+  {
+    CHECK(report.quality.bad_elements == 0);
+  }
+}
+
+//------------------------------------------------------------------------------
+void TestPlate()
+{
+  vtkSmartPointer<vtkPolyData> plate = ReadPlate();
+  CHECK(plate->GetNumberOfPoints() == 29);
+  vtkNew<vtkPoints> seedPoints;
+  seedPoints->InsertNextPoint(2.0, 3.0, 0.0);
+  vtkNew<vtkPolyData> seeds;
+  seeds->SetPoints(seedPoints);
+
+  vtkNew<vtkGPUConstrainedDelaunay2D> filter;
+  EventLog log;
+  log.Watch(filter);
+  filter->SetInputData(plate);
+  filter->SetHoleSeedsData(seeds);
+  filter->SetBackendToCPU();
+  filter->SetMinimumAngle(25);
+  filter->RemoveExteriorOn();
+  filter->Update();
+  CHECK(log.Errors.empty());
+  CheckArrays(filter);
+  Validate(filter->GetOutput(), PslgOf(plate), 25, true);
+
+  // The mesh covers exactly the plate minus the hole (boundary does not drift).
+  const gdr::Pslg input = PslgOf(plate);
+  std::vector<gdr::Point2> outer(input.points.begin(), input.points.begin() + 20);
+  std::vector<gdr::Point2> hole(input.points.begin() + 20, input.points.begin() + 24);
+  const double expected = PolygonArea(outer) - PolygonArea(hole);
+  const double area = ArraySum(filter->GetOutput()->GetCellData()->GetArray("Area"));
+  CHECK(std::fabs(area - expected) <= 1e-9 * expected);
+
+  // All input points are in the output and are typed as input points.
+  vtkDataArray* type = filter->GetOutput()->GetPointData()->GetArray("PointType");
+  vtkIdType inputTyped = 0;
+  for (vtkIdType i = 0; type && i < type->GetNumberOfTuples(); ++i)
+  {
+    inputTyped += type->GetComponent(i, 0) == 0 ? 1 : 0;
+  }
+  CHECK(inputTyped == plate->GetNumberOfPoints());
+}
+
+void TestLinesAndPoints()
+{
+  // Open polylines plus free points (vertex cells), meshed over their convex hull.
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> lines;
+  vtkNew<vtkCellArray> verts;
+  const vtkIdType a = points->InsertNextPoint(0, 0, 1);
+  const vtkIdType b = points->InsertNextPoint(4, 1, 1);
+  const vtkIdType c = points->InsertNextPoint(8, 0, 1);
+  const vtkIdType d = points->InsertNextPoint(4, 5, 1);
+  const vtkIdType e = points->InsertNextPoint(2, 3, 1);
+  const vtkIdType line1[3] = { a, b, c };
+  lines->InsertNextCell(3, line1);
+  const vtkIdType line2[2] = { b, d };
+  lines->InsertNextCell(2, line2);
+  verts->InsertNextCell(1, &e);
+  vtkNew<vtkPolyData> pd;
+  pd->SetPoints(points);
+  pd->SetLines(lines);
+  pd->SetVerts(verts);
+
+  vtkNew<vtkGPUConstrainedDelaunay2D> filter;
+  filter->SetInputData(pd);
+  filter->SetBackendToCPU();
+  filter->Update();
+  CheckArrays(filter);
+  Validate(filter->GetOutput(), PslgOf(pd), 20, true);
+  double bounds[6];
+  filter->GetOutput()->GetBounds(bounds);
+  CHECK(bounds[4] == 1 && bounds[5] == 1); // stays in the input's plane
+
+  // Points only (no cells at all): a quality mesh of the points' convex hull.
+  vtkNew<vtkPolyData> cloud;
+  cloud->SetPoints(points);
+  filter->SetInputData(cloud);
+  filter->SetModeToChew();
+  filter->Update();
+  CheckArrays(filter);
+  gdr::Pslg cloudPslg = PslgOf(cloud);
+  Validate(filter->GetOutput(), cloudPslg, 20, true);
+}
+
+void TestSizeBounds()
+{
+  vtkSmartPointer<vtkPolyData> plate = ReadPlate();
+  vtkNew<vtkGPUConstrainedDelaunay2D> filter;
+  filter->SetInputData(plate);
+  filter->SetBackendToCPU();
+  filter->RemoveExteriorOn();
+  filter->SetMaximumArea(0.05);
+  filter->Update();
+  CheckArrays(filter);
+  vtkDataArray* area = filter->GetOutput()->GetCellData()->GetArray("Area");
+  CHECK(area && area->GetRange()[1] <= 0.05 * (1 + 1e-9));
+  const vtkIdType fine = filter->GetOutput()->GetNumberOfCells();
+
+  // A Steiner point cap stops refinement cleanly.
+  filter->SetMaximumArea(0);
+  filter->SetMaximumSteinerPoints(5);
+  filter->Update();
+  CHECK(filter->GetOutput()->GetNumberOfCells() > 0);
+  CHECK(filter->GetOutput()->GetNumberOfCells() < fine);
+  vtkDataArray* steiner = filter->GetOutput()->GetFieldData()->GetArray("SteinerPoints");
+  CHECK(steiner && steiner->GetComponent(0, 0) <= 5);
+}
+
+void TestClamping()
+{
+  vtkNew<vtkGPUConstrainedDelaunay2D> filter;
+  CHECK(filter->GetMinimumAngle() == 20);
+  CHECK(filter->GetMaximumSteinerPoints() == -1);
+  CHECK(filter->GetBackend() == vtkGPUConstrainedDelaunay2D::AUTO);
+  filter->SetMinimumAngle(50);
+  CHECK(filter->GetMinimumAngle() == 34);
+  filter->SetMinimumAngle(-3);
+  CHECK(filter->GetMinimumAngle() == 0);
+  filter->SetMaximumArea(-1);
+  CHECK(filter->GetMaximumArea() == 0);
+  filter->SetMaximumSteinerPoints(-7);
+  CHECK(filter->GetMaximumSteinerPoints() == -1);
+  filter->SetBackend(9);
+  CHECK(filter->GetBackend() == vtkGPUConstrainedDelaunay2D::CPU);
+}
+
+void TestEmptyInput()
+{
+  vtkNew<vtkPolyData> empty;
+  vtkNew<vtkGPUConstrainedDelaunay2D> filter;
+  EventLog log;
+  log.Watch(filter);
+  filter->SetInputData(empty);
+  filter->SetBackendToCPU();
+  filter->Update();
+  CHECK(log.Errors.empty());
+  CHECK(filter->GetOutput()->GetNumberOfPoints() == 0);
+  CHECK(filter->GetOutput()->GetNumberOfCells() == 0);
+}
+
+void TestCrossingLines()
+{
+  vtkNew<vtkPoints> points;
+  points->InsertNextPoint(0, 0, 0);
+  points->InsertNextPoint(2, 2, 0);
+  points->InsertNextPoint(0, 2, 0);
+  points->InsertNextPoint(2, 0, 0);
+  vtkNew<vtkCellArray> lines;
+  const vtkIdType l1[2] = { 0, 1 };
+  const vtkIdType l2[2] = { 2, 3 };
+  lines->InsertNextCell(2, l1);
+  lines->InsertNextCell(2, l2);
+  vtkNew<vtkPolyData> pd;
+  pd->SetPoints(points);
+  pd->SetLines(lines);
+
+  vtkNew<vtkGPUConstrainedDelaunay2D> filter;
+  EventLog log;
+  log.Watch(filter);
+  filter->SetInputData(pd);
+  filter->SetBackendToCPU();
+  filter->Update();
+  CHECK(!log.Errors.empty());
+  CHECK(log.ErrorContains("SelfIntersectingInput"));
+  for (const std::string& e : log.Errors)
+  {
+    std::cout << "reported: " << e << std::endl;
+  }
+  CHECK(filter->GetOutput()->GetNumberOfCells() == 0);
+  CHECK(filter->GetOutput()->GetNumberOfPoints() == 0);
+
+  // The same input with SplitIntersections meshes.
+  log.Errors.clear();
+  filter->SplitIntersectionsOn();
+  filter->Update();
+  CHECK(log.Errors.empty());
+  CHECK(filter->GetOutput()->GetNumberOfCells() > 0);
+}
+
+void TestAbort()
+{
+  vtkSmartPointer<vtkPolyData> plate = ReadPlate();
+  vtkNew<vtkGPUConstrainedDelaunay2D> filter;
+  EventLog log;
+  log.Watch(filter);
+  filter->SetInputData(plate);
+  filter->SetBackendToCPU();
+  filter->SetMaximumArea(0.001);
+  vtkNew<vtkCallbackCommand> abortOnProgress;
+  abortOnProgress->SetCallback([](vtkObject* caller, unsigned long, void*, void*)
+    { static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1); });
+  filter->AddObserver(vtkCommand::ProgressEvent, abortOnProgress);
+  filter->Update();
+  CHECK(log.Errors.empty());
+  CHECK(filter->GetOutput()->GetNumberOfCells() == 0);
+  CHECK(filter->GetOutput()->GetNumberOfPoints() == 0);
+  CHECK(filter->GetOutput()->GetCellData()->GetNumberOfArrays() == 0);
+}
+
+void TestBackends()
+{
+  vtkSmartPointer<vtkPolyData> plate = ReadPlate();
+  vtkNew<vtkGPUConstrainedDelaunay2D> filter;
+  EventLog log;
+  log.Watch(filter);
+  filter->SetInputData(plate);
+
+  filter->SetBackendToGPU();
+  filter->Update();
+  if (gdr::gpu_available())
+  {
+    CHECK(log.Errors.empty());
+    CHECK(filter->GetOutput()->GetNumberOfCells() > 0);
+  }
+  else
+  {
+    CHECK(log.ErrorContains("no usable CUDA device"));
+    CHECK(filter->GetOutput()->GetNumberOfCells() == 0);
+  }
+
+  log.Errors.clear();
+  log.Warnings.clear();
+  filter->SetBackendToAuto();
+  filter->Update();
+  CHECK(log.Errors.empty());
+  CHECK(filter->GetOutput()->GetNumberOfCells() > 0);
+  if (!gdr::gpu_available())
+  {
+    CHECK(!log.Warnings.empty());
+    auto* backend =
+      vtkStringArray::SafeDownCast(filter->GetOutput()->GetFieldData()->GetAbstractArray("Backend"));
+    CHECK(backend && backend->GetValue(0) == "cpu");
+  }
+}
+}
+
+int main(int argc, char* argv[])
+{
+  const std::map<std::string, std::function<void()>> tests = {
+    { "Plate", TestPlate },
+    { "LinesAndPoints", TestLinesAndPoints },
+    { "SizeBounds", TestSizeBounds },
+    { "Clamping", TestClamping },
+    { "EmptyInput", TestEmptyInput },
+    { "CrossingLines", TestCrossingLines },
+    { "Abort", TestAbort },
+    { "Backends", TestBackends },
+  };
+  if (argc != 2 || !tests.count(argv[1]))
+  {
+    std::cerr << "usage: " << argv[0] << " <test>; tests:";
+    for (const auto& t : tests)
+    {
+      std::cerr << " " << t.first;
+    }
+    std::cerr << std::endl;
+    return 2;
+  }
+  tests.at(argv[1])();
+  if (Failures)
+  {
+    std::cerr << argv[1] << ": " << Failures << " check(s) failed" << std::endl;
+    return 1;
+  }
+  std::cout << argv[1] << ": passed" << std::endl;
+  return 0;
+}

@@ -1,0 +1,188 @@
+"""ParaView test of the GPUDelaunayRefinement plugin (pvbatch / pvpython).
+
+    pvbatch TestGPUDelaunayPlugin.py --plugin <GPUDelaunayRefinement.so> --input <.vtp>
+            --outdir <dir> [--render --baseline <png>] [--update-baseline]
+
+Loads the plugin, applies GPUConstrainedDelaunay2D to the bundled plate, checks counts,
+arrays, histogram and proxy metadata. With --render (needs a display: run it under
+`xvfb-run -a pvbatch`), renders the meshed domain and compares it with the baseline
+image, and saves the mesh, the histogram chart and both side by side
+(docs/paraview.md uses the last one).
+"""
+import argparse
+import os
+import sys
+
+from paraview.simple import *  # noqa: F401,F403
+from paraview import servermanager
+
+
+def check(condition, message):
+    if not condition:
+        print("FAILED:", message)
+        sys.exit(1)
+
+
+def parse():
+    p = argparse.ArgumentParser()
+    p.add_argument("--plugin", required=True)
+    p.add_argument("--input", required=True)
+    p.add_argument("--outdir", required=True)
+    p.add_argument("--render", action="store_true")
+    p.add_argument("--baseline")
+    p.add_argument("--update-baseline", action="store_true")
+    return p.parse_args()
+
+
+def compare_images(test_png, baseline_png):
+    from vtkmodules.vtkIOImage import vtkPNGReader
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    import numpy
+
+    def load(path):
+        r = vtkPNGReader()
+        r.SetFileName(path)
+        r.Update()
+        img = r.GetOutput()
+        dims = img.GetDimensions()
+        a = vtk_to_numpy(img.GetPointData().GetScalars()).astype(numpy.int32)
+        return a.reshape(dims[1], dims[0], -1)[:, :, :3]
+
+    a, b = load(test_png), load(baseline_png)
+    check(a.shape == b.shape, "image size %s differs from baseline %s" % (a.shape, b.shape))
+    diff = numpy.abs(a - b).max(axis=2)
+    changed = float((diff > 40).mean())
+    print("image comparison: %.3f%% of the pixels differ" % (100 * changed))
+    check(changed < 0.01, "image differs from baseline %s in %.2f%% of the pixels"
+          % (baseline_png, 100 * changed))
+
+
+def main():
+    args = parse()
+    os.makedirs(args.outdir, exist_ok=True)
+
+    LoadPlugin(args.plugin, remote=False, ns=globals())
+    check("GPUConstrainedDelaunay2D" in globals(), "proxy GPUConstrainedDelaunay2D not defined")
+
+    reader = XMLPolyDataReader(FileName=[args.input])
+    seed = PointSource(Center=[2.0, 3.0, 0.0], NumberOfPoints=1, Radius=0.0)
+    mesh = GPUConstrainedDelaunay2D(Input=reader, HoleSeeds=seed)
+
+    # Defaults and documented ranges.
+    check(mesh.MinimumAngle == 20, "MinimumAngle default")
+    check(mesh.MaximumEdgeLength == 0 and mesh.MaximumArea == 0, "size bounds off by default")
+    check(mesh.MaximumSteinerPoints == -1, "MaximumSteinerPoints default")
+    check(mesh.Mode == "Ruppert" and mesh.Backend == "Auto", "Mode/Backend defaults")
+    check(mesh.RemoveExterior == 0 and mesh.SplitIntersections == 0, "boolean defaults")
+    for name in ("MinimumAngle", "MaximumEdgeLength", "MaximumArea", "MaximumSteinerPoints",
+                 "Mode", "Backend", "RemoveExterior", "SplitIntersections", "HoleSeeds"):
+        prop = mesh.GetProperty(name)
+        check(prop is not None, "property " + name)
+        doc = prop.SMProperty.GetDocumentation()
+        check(doc is not None and len(doc.GetDescription().strip()) > 20, "documentation of " + name)
+    angle_domain = mesh.GetProperty("MinimumAngle").SMProperty.GetDomain("range")
+    check(angle_domain.GetMinimum(0) == 0 and angle_domain.GetMaximum(0) == 34,
+          "MinimumAngle range 0..34")
+    for name in ("Mode", "Backend", "MaximumSteinerPoints", "SplitIntersections"):
+        check(mesh.GetProperty(name).SMProperty.GetPanelVisibility() == "advanced",
+              name + " is advanced")
+
+    mesh.MinimumAngle = 25.0
+    mesh.RemoveExterior = 1
+    mesh.Backend = "CPU"
+    mesh.UpdatePipeline()
+
+    info = mesh.GetDataInformation(0)
+    ncells = info.GetNumberOfCells()
+    npoints = info.GetNumberOfPoints()
+    print("mesh: %d triangles, %d points" % (ncells, npoints))
+    check(ncells > 50, "too few triangles: %d" % ncells)
+    check(npoints >= 29, "input points missing: %d" % npoints)
+    for name in ("MinAngle", "MaxAngle", "RadiusEdgeRatio", "Area", "IsBad"):
+        check(name in mesh.CellData.keys(), "cell array " + name)
+    check("PointType" in mesh.PointData.keys(), "point array PointType")
+    lo, hi = mesh.CellData["MinAngle"].GetRange()
+    check(lo >= 25.0 - 1e-9 and hi <= 60.0 + 1e-9, "MinAngle range %g..%g" % (lo, hi))
+    check(mesh.CellData["IsBad"].GetRange() == (0.0, 0.0), "no bad triangles")
+    area = sum(servermanager.Fetch(mesh).GetCellData().GetArray("Area").GetValue(i)
+               for i in range(ncells))
+    check(abs(area - (36.0 + 54.0 * 0.25881904510252074 - 3.0)) < 1e-6,
+          "meshed area %.9f (plate minus hole)" % area)
+
+    table = servermanager.Fetch(mesh, idx=1)
+    check(table.GetNumberOfRows() == 60, "histogram rows")
+    counts = table.GetColumnByName("bin_values")
+    check(sum(counts.GetValue(i) for i in range(60)) == ncells, "histogram total")
+    check(all(counts.GetValue(i) == 0 for i in range(25)), "no triangle below 25 degrees")
+
+    controller = servermanager.vtkSMParaViewPipelineControllerWithRendering
+    check(controller.GetPreferredViewType(mesh.SMProxy, 1) == "XYBarChartView",
+          "histogram port prefers the bar chart view")
+
+    SaveData(os.path.join(args.outdir, "plate_mesh.vtp"), proxy=mesh)
+
+    if not args.render:
+        print("plugin test passed (no rendering)")
+        return
+
+    # Regression image: the meshed domain in one color (independent of the mesh details).
+    view = CreateView("RenderView")
+    view.ViewSize = [300, 200]
+    view.OrientationAxesVisibility = 0
+    view.Background = [1.0, 1.0, 1.0]
+    if hasattr(view, "UseColorPaletteForBackground"):
+        view.UseColorPaletteForBackground = 0
+    display = Show(mesh, view)
+    ColorBy(display, None)
+    display.AmbientColor = display.DiffuseColor = [0.2, 0.3, 0.6]
+    view.CameraPosition = [4.5, 3.0, 20.0]
+    view.CameraFocalPoint = [4.5, 3.0, 0.0]
+    view.CameraViewUp = [0.0, 1.0, 0.0]
+    view.CameraParallelProjection = 1
+    view.CameraParallelScale = 3.6
+    Render(view)
+    test_png = os.path.join(args.outdir, "plate_domain.png")
+    SaveScreenshot(test_png, view, ImageResolution=[300, 200])
+    if args.update_baseline:
+        import shutil
+        shutil.copyfile(test_png, args.baseline)
+        print("baseline updated:", args.baseline)
+    elif args.baseline:
+        compare_images(test_png, args.baseline)
+
+    # Pictures for the docs: the mesh colored by MinAngle, the histogram, both side by side.
+    display.SetRepresentationType("Surface With Edges")
+    ColorBy(display, ("CELLS", "MinAngle"))
+    lut = GetColorTransferFunction("MinAngle")
+    lut.RescaleTransferFunction(0.0, 60.0)
+    display.SetScalarBarVisibility(view, True)
+    view.ViewSize = [800, 500]
+    view.CameraParallelScale = 3.8
+    Render(view)
+    SaveScreenshot(os.path.join(args.outdir, "plate_mesh.png"), view, ImageResolution=[800, 500])
+
+    chart = CreateView("XYBarChartView")
+    chart.ViewSize = [600, 500]
+    bars = Show(OutputPort(mesh, 1), chart)
+    bars.UseIndexForXAxis = 0
+    bars.XArrayName = "bin_extents"
+    bars.SeriesVisibility = ["bin_values"]
+    bars.SeriesLabel = ["bin_values", "triangles"]
+    chart.ChartTitle = "Minimum angle per triangle"
+    chart.BottomAxisTitle = "degrees"
+    chart.LeftAxisTitle = "triangles"
+    Render(chart)
+    SaveScreenshot(os.path.join(args.outdir, "plate_histogram.png"), chart,
+                   ImageResolution=[600, 500])
+
+    layout = CreateLayout("GPU Delaunay")
+    layout.SplitHorizontal(0, 0.57)
+    AssignViewToLayout(view=view, layout=layout, hint=1)
+    AssignViewToLayout(view=chart, layout=layout, hint=2)
+    SaveScreenshot(os.path.join(args.outdir, "paraview_plate.png"), layout,
+                   ImageResolution=[1400, 500])
+    print("plugin test passed (rendered into %s)" % args.outdir)
+
+
+if __name__ == "__main__":
+    main()
