@@ -1,0 +1,75 @@
+#!/usr/bin/env bash
+# Collects everything the GPU machine lacks into .device/ (git-ignored), to be carried with
+#   run(command="scripts/device_run.sh quick", carry=[".device"])
+# The GPU machine has CUDA, CMake and ninja but no CGAL, TetGen, TBB, GMP, VTK or GoogleTest,
+# and cannot download anything. So this script
+#   1. builds the core, its tests, gdr_bench and the baselines here (CUDA arch 90) unless
+#      --no-build is given (then it packages what build-bench already holds);
+#   2. copies the programs (bin/), the test programs (tests/) and every shared library they
+#      need that is not part of glibc or the NVIDIA driver (lib/);
+#   3. copies the data set (data/) and GoogleTest's sources (googletest/, for building there);
+#   4. writes manifest.txt (the absolute source path the test programs were compiled with).
+# Environment: GDR_BENCH_BUILD (build dir, default build-bench), GDR_BUILD_JOBS (default 2).
+set -euo pipefail
+
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+build=${GDR_BENCH_BUILD:-$root/build-bench}
+dest=$root/.device
+jobs=${GDR_BUILD_JOBS:-2}
+do_build=1
+[[ ${1:-} == --no-build ]] && do_build=0
+
+if (( do_build )); then
+  cmake -S "$root" -B "$build" -G Ninja -DGDR_ENABLE_VTK=OFF \
+    -DCMAKE_CUDA_COMPILER=/usr/local/cuda/bin/nvcc -DCMAKE_CUDA_ARCHITECTURES=90 >/dev/null
+  # CGAL Mesh_3 units need ~3 GB each: build them alone first, then the rest.
+  mesh3_objs=$(ninja -C "$build" -t targets all | grep -o '^Benchmarks/CMakeFiles/bench_cgal_mesh3.dir/baselines/mesh3_[a-z]*\.cpp\.o' || true)
+  [[ -n $mesh3_objs ]] && ninja -C "$build" -j1 $mesh3_objs
+  ninja -C "$build" -j"$jobs"
+fi
+
+rm -rf "$dest"
+mkdir -p "$dest/bin" "$dest/tests" "$dest/lib"
+
+# Programs in the build's bin/: our tools and baselines go to bin/, everything else is a test.
+shopt -s nullglob
+for exe in "$build"/bin/*; do
+  [[ -f $exe && -x $exe ]] || continue
+  case $(basename "$exe") in
+    gdr|gdr_bench|bench_*) cp "$exe" "$dest/bin/" ;;
+    *) cp "$exe" "$dest/tests/" ;;
+  esac
+done
+strip --strip-unneeded "$dest"/bin/* "$dest"/tests/* 2>/dev/null || true
+
+# Shared libraries: all that ldd resolves, except glibc's own and the driver's (the GPU
+# machine must use its own libcuda; static cudart loads it at run time).
+for exe in "$dest"/bin/* "$dest"/tests/*; do
+  ldd "$exe" | awk '/=> \// {print $3}'
+done | sort -u | while read -r lib; do
+  case $(basename "$lib") in
+    libc.so*|libm.so*|libpthread.so*|libdl.so*|librt.so*|ld-linux*|libresolv.so*) ;;
+    libcuda.so*|libnvidia*) ;;
+    *) cp -L "$lib" "$dest/lib/" ;;
+  esac
+done
+strip --strip-unneeded "$dest"/lib/* 2>/dev/null || true
+
+data=$root/../shared/data
+[[ -d $data ]] && cp -r "$data" "$dest/data" && chmod -R u+w "$dest/data"
+[[ -d /usr/src/googletest ]] && cp -r /usr/src/googletest "$dest/googletest"
+
+{
+  echo "source_dir=$root"
+  echo "built=$(date -u '+%Y-%m-%d %H:%M:%S UTC') on $(hostname)"
+  echo "commit=$(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)"
+} > "$dest/manifest.txt"
+
+echo "packaged into $dest:"
+du -sh "$dest"/* | sed 's/^/  /'
+total_kib=$(du -sk "$dest" | cut -f1)
+echo "  total $((total_kib / 1024)) MiB (carry limit: 64 MiB for the whole working tree)"
+if (( total_kib > 60 * 1024 )); then
+  echo "package_device.sh: .device is too large to carry" >&2
+  exit 1
+fi
