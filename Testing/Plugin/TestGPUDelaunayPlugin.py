@@ -115,7 +115,7 @@ def main():
     check(sum(counts.GetValue(i) for i in range(60)) == ncells, "histogram total")
     check(all(counts.GetValue(i) == 0 for i in range(25)), "no triangle below 25 degrees")
 
-    controller = servermanager.vtkSMParaViewPipelineControllerWithRendering
+    controller = servermanager.vtkSMParaViewPipelineControllerWithRendering()
     check(controller.GetPreferredViewType(mesh.SMProxy, 1) == "XYBarChartView",
           "histogram port prefers the bar chart view")
 
@@ -156,6 +156,10 @@ def main():
     lut = GetColorTransferFunction("MinAngle")
     lut.RescaleTransferFunction(0.0, 60.0)
     display.SetScalarBarVisibility(view, True)
+    scalar_bar = GetScalarBar(lut, view)
+    scalar_bar.Title = "MinAngle (deg)"
+    scalar_bar.ComponentTitle = ""
+    scalar_bar.TitleColor = scalar_bar.LabelColor = [0.1, 0.1, 0.1]
     view.ViewSize = [800, 500]
     view.CameraParallelScale = 3.8
     Render(view)
