@@ -74,7 +74,7 @@ step "Self-check"
 step "Meshing the bundled example apps/gdr/examples/gear.poly"
 mkdir -p out
 "$GDR" 2d apps/gdr/examples/gear.poly -o out/example.vtu --min-angle 25 --max-area 0.001 \
-  --check --stats-json out/example.json
+  --remove-exterior --check --stats-json out/example.json
 
 plugin="$(find "$BUILD_DIR" -path '*/paraview-*/plugins/*' -name '*.so' -print -quit 2>/dev/null || true)"
 if [[ -f scripts/render_example.py && -n "$plugin" ]] && command -v xvfb-run >/dev/null; then

@@ -2,6 +2,7 @@
 # -DGDR=exe -DARGS=list -DWORK=dir [-DRC=n] [-DMATCH=regex] [-DNO_OUTPUT=1]
 # [-DFILES=list of files that must exist] [-DJSON=file] [-DJSON_EQUAL=list of path=value]
 # [-DJSON_POSITIVE=list of path]; lists are joined by '|', JSON paths separate members by '/'.
+cmake_minimum_required(VERSION 3.20)
 foreach(var ARGS FILES JSON_EQUAL JSON_POSITIVE)
   string(REPLACE "|" ";" ${var} "${${var}}")
 endforeach()
@@ -13,7 +14,8 @@ endif()
 execute_process(COMMAND "${GDR}" ${ARGS} WORKING_DIRECTORY "${WORK}"
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 set(all "${out}${err}")
-message("gdr ${ARGS}\n--- exit code ${rc}\n${all}")
+list(JOIN ARGS " " shown)
+message("gdr ${shown}\n--- exit code ${rc}\n${all}")
 if(NOT rc STREQUAL "${RC}")
   message(FATAL_ERROR "expected exit code ${RC}, got ${rc}")
 endif()

@@ -28,7 +28,9 @@ Usage:
   gdr 2d INPUT.poly -o OUTPUT [options]
 
 INPUT is a planar straight-line graph in Triangle's .poly format (points, segments, optional
-holes), or a .node file (points only). OUTPUT is written by its extension:
+hole seeds), or a .node file (points only). Holes are emptied from their seeds; the rest of
+the convex hull is meshed too unless --remove-exterior is given. OUTPUT is written by its
+extension:
   .vtu / .vtp   VTK XML (ParaView) with cell arrays MinAngle, MaxAngle, RadiusEdgeRatio,
                 Area, IsBad and point array PointType (0 input, 1 on a segment, 2 free)
   .node / .ele  Triangle's format (OUTPUT.node, OUTPUT.ele and OUTPUT.poly of subsegments)
@@ -55,7 +57,7 @@ Checking and reporting:
   -h, --help              this text
 
 Examples:
-  gdr 2d shape.poly -o shape.vtu
+  gdr 2d apps/gdr/examples/gear.poly -o gear.vtu --remove-exterior
   gdr 2d shape.poly -o shape.vtu --min-angle 30 --max-area 0.5 --check
   gdr 2d map.poly -o map.vtp --remove-exterior --backend gpu --stats-json map.json
   gdr 2d shape.poly -o shape.node --cdt-only

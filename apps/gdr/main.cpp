@@ -23,9 +23,9 @@ Usage:
   gdr --help | gdr 2d --help              this text | all options of a subcommand
 
 Examples:
-  gdr 2d Data/pslg/lake.poly -o lake.vtu --min-angle 25 --check
+  gdr 2d apps/gdr/examples/gear.poly -o gear.vtu --min-angle 25 --remove-exterior --check
   gdr 2d shape.poly -o shape.node --max-area 0.01 --backend cpu
-  gdr info shape.poly
+  gdr info apps/gdr/examples/gear.poly
 
 Inputs are Triangle .poly/.node files (2D). Outputs are chosen by extension: .vtu or .vtp
 (open them in ParaView) or .node/.ele (Triangle's format).

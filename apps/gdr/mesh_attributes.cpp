@@ -30,12 +30,6 @@ io::Attributes triangle_attributes(const TriMesh& mesh, double min_angle_deg) {
   io::Attributes attributes;
   attributes.cell_data = {std::move(min_angle), std::move(max_angle), std::move(radius_edge),
                           std::move(area), std::move(is_bad)};
-  if (mesh.point_type.size() == mesh.points.size() && !mesh.points.empty()) {
-    io::DataArray type{"PointType", 1, std::vector<double>(mesh.points.size())};
-    for (std::size_t i = 0; i < mesh.points.size(); ++i)
-      type.values[i] = static_cast<double>(mesh.point_type[i]);
-    attributes.point_data.push_back(std::move(type));
-  }
   return attributes;
 }
 
