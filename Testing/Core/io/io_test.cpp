@@ -1,0 +1,303 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+
+#include "gdr/error.h"
+#include "gdr/io.h"
+#include "gdr/validate.h"
+
+namespace {
+
+using namespace gdr;
+const std::string kData = GDR_DATA_DIR;
+const std::string kShared = GDR_SHARED_DATA_DIR;
+const std::string kOut = GDR_TEST_OUTPUT_DIR;
+
+bool exists(const std::string& p) { return std::ifstream(p).good(); }
+
+// Signed volume enclosed by a closed triangulated surface (divergence theorem).
+double enclosed_volume(const Surface& s) {
+  double v = 0;
+  for (const auto& t : s.triangles)
+    v += tet_volume(s.points[t[0]], s.points[t[1]], s.points[t[2]], Point3{});
+  return v;
+}
+
+// The IoError message of reading `path`, "" if it read fine.
+template <class F>
+std::string io_error(F read) {
+  try {
+    read();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.status(), Status::IoError) << e.what();
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ReadPoly, SquareWithHoleOneBasedWithAttributesAndMarkers) {
+  const Pslg p = io::read_poly(kData + "/square_hole.poly");
+  ASSERT_EQ(p.points.size(), 8u);
+  ASSERT_EQ(p.segments.size(), 8u);
+  EXPECT_EQ(p.segments[0][0], 0);
+  EXPECT_EQ(p.segments[0][1], 1);
+  EXPECT_EQ(p.segments[7][0], 7);
+  EXPECT_EQ(p.segments[7][1], 4);
+  EXPECT_EQ(p.points[2].x, 4.0);
+  EXPECT_EQ(p.points[2].y, 4.0);
+  ASSERT_EQ(p.holes.size(), 1u);
+  EXPECT_EQ(p.holes[0].x, 2.0);
+}
+
+TEST(ReadPoly, SharpAngleZeroBased) {
+  const Pslg p = io::read_poly(kData + "/sharp_angle.poly");
+  ASSERT_EQ(p.points.size(), 4u);
+  ASSERT_EQ(p.segments.size(), 4u);
+  EXPECT_EQ(p.segments[3][0], 3);
+  EXPECT_EQ(p.segments[3][1], 0);
+  const double angle = std::atan2(p.points[3].y, p.points[3].x) * 180 / M_PI;
+  EXPECT_NEAR(angle, 5.0, 1e-9);
+}
+
+TEST(ReadPoly, EmptyPointSectionReadsNodeBeside) {
+  const Pslg p = io::read_poly(kData + "/points_only.poly");
+  EXPECT_EQ(p.points.size(), 3u);
+  EXPECT_EQ(p.segments.size(), 2u);
+  EXPECT_EQ(p.segments[1][1], 2);
+  const Pslg n = io::read_poly(kData + "/points_only.node");
+  EXPECT_EQ(n.points.size(), 3u);
+  EXPECT_TRUE(n.segments.empty());
+}
+
+TEST(ReadSurface, OffQuadsAreTriangulatedWithTheirOrientation) {
+  const Surface s = io::read_off(kData + "/cube.off");
+  EXPECT_EQ(s.points.size(), 8u);
+  EXPECT_EQ(s.triangles.size(), 12u);
+  EXPECT_DOUBLE_EQ(enclosed_volume(s), 1.0);
+}
+
+TEST(ReadSurface, TetgenPolyNonConvexFacetsAreEarClipped) {
+  const Surface s = io::read_tetgen_poly(kData + "/lshape.poly");
+  EXPECT_EQ(s.points.size(), 12u);
+  EXPECT_EQ(s.triangles.size(), 2u * 4 + 6u * 2);
+  EXPECT_DOUBLE_EQ(enclosed_volume(s), 3.0);
+}
+
+TEST(ReadSurface, TetgenSmesh) {
+  const Surface s = io::read_surface(kData + "/tet.smesh");
+  EXPECT_EQ(s.points.size(), 4u);
+  EXPECT_EQ(s.triangles.size(), 4u);
+  EXPECT_DOUBLE_EQ(std::fabs(enclosed_volume(s)), 1.0 / 6);
+}
+
+TEST(ReadSurface, StlAsciiAndBinaryMergeIdenticalVertices) {
+  for (const char* name : {"/tet_ascii.stl", "/tet_binary.stl"}) {
+    const Surface s = io::read_stl(kData + name);
+    EXPECT_EQ(s.points.size(), 4u) << name;  // -0 and 0 merge too
+    EXPECT_EQ(s.triangles.size(), 4u) << name;
+    EXPECT_DOUBLE_EQ(enclosed_volume(s), 1.0 / 6) << name;
+  }
+}
+
+TEST(DetectInputKind, ByExtensionAndHeader) {
+  EXPECT_EQ(io::detect_input_kind(kData + "/square_hole.poly"), io::InputKind::Pslg2d);
+  EXPECT_EQ(io::detect_input_kind(kData + "/lshape.poly"), io::InputKind::Surface3d);
+  EXPECT_EQ(io::detect_input_kind(kData + "/points_only.node"), io::InputKind::Pslg2d);
+  EXPECT_EQ(io::detect_input_kind(kData + "/cube.off"), io::InputKind::Surface3d);
+  EXPECT_EQ(io::detect_input_kind(kData + "/tet_binary.stl"), io::InputKind::Surface3d);
+  EXPECT_EQ(io::detect_input_kind(kData + "/tet.smesh"), io::InputKind::Surface3d);
+  EXPECT_NE(io_error([] { io::detect_input_kind("mesh.xyz"); }).find("unsupported"),
+            std::string::npos);
+}
+
+struct Broken {
+  const char* file;
+  int line;
+  const char* reason;  // a fragment of the message
+};
+
+TEST(BrokenFiles, EveryOneIsAnIoErrorWithItsLine) {
+  const Broken cases[] = {
+      {"broken_truncated.poly", 5, "unexpected end of file"},
+      {"broken_bad_number.node", 3, "bad number 'abc'"},
+      {"broken_index_range.poly", 7, "out of range"},
+      {"broken_nan.node", 4, "point 2"},
+      {"broken_nonconsecutive.node", 4, "consecutively"},
+      {"broken_count.off", 2, "larger than the file"},
+      {"broken_face_index.off", 6, "out of range"},
+      {"broken_inf.off", 5, "point 2"},
+      {"broken_ascii.stl", 7, "expected 'endloop'"},
+      {"broken_facet_hole.poly", 7, "holes"},
+      {"broken_dimension.poly", 2, "dimension"},
+      {"broken_tet.ele", 2, "out of range"},
+  };
+  for (const Broken& c : cases) {
+    const std::string path = kData + "/" + c.file;
+    const std::string ext = path.substr(path.rfind('.'));
+    const std::string msg = io_error([&] {
+      if (ext == ".off") io::read_off(path);
+      else if (ext == ".stl") io::read_stl(path);
+      else if (ext == ".ele") io::read_tetgen_mesh(kData + "/broken_tet.node", path);
+      else if (std::string(c.file) == "broken_facet_hole.poly") io::read_tetgen_poly(path);
+      else io::read_poly(path);
+    });
+    EXPECT_NE(msg.find(path + ":" + std::to_string(c.line) + ": "), std::string::npos)
+        << c.file << ": " << msg;
+    EXPECT_NE(msg.find(c.reason), std::string::npos) << c.file << ": " << msg;
+  }
+  const std::string stl = io_error([] { io::read_stl(kData + "/broken_binary_size.stl"); });
+  EXPECT_NE(stl.find("does not match"), std::string::npos) << stl;
+  EXPECT_NE(io_error([] { io::read_poly(kData + "/no_such_file.poly"); }).find("cannot open"),
+            std::string::npos);
+}
+
+TEST(BrokenFiles, EveryTruncationOfAGoodFileFailsCleanly) {
+  // Cutting a file anywhere must give an IoError (or a smaller valid file), never a crash.
+  std::ifstream in(kData + "/lshape.poly", std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string path = kOut + "/truncated.poly";
+  int errors = 0;
+  for (std::size_t n = 0; n < text.size(); n += 7) {
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << text.substr(0, n);
+    try {
+      io::read_tetgen_poly(path);
+    } catch (const Error& e) {
+      EXPECT_EQ(e.status(), Status::IoError);
+      ++errors;
+    }
+  }
+  EXPECT_GT(errors, 0);
+}
+
+TEST(SharedData, AllPslgsAndSurfacesRead) {
+  if (!exists(kShared + "/README.md")) GTEST_SKIP() << "no shared data at " << kShared;
+  const struct {
+    const char* name;
+    std::size_t points, segments;
+  } pslgs[] = {{"world_land_110m", 5002, 4999},
+               {"us_counties_albers", 25227, 28377},
+               {"contours_topobathy_200m", 30249, 30414}};
+  for (const auto& c : pslgs) {
+    const std::string path = kShared + "/pslg/" + c.name + ".poly";
+    EXPECT_EQ(io::detect_input_kind(path), io::InputKind::Pslg2d);
+    const Pslg p = io::read_poly(path);
+    EXPECT_EQ(p.points.size(), c.points) << c.name;
+    EXPECT_EQ(p.segments.size(), c.segments) << c.name;
+  }
+  const struct {
+    const char* name;
+    std::size_t points, triangles;
+  } surfaces[] = {{"thingi10k_65778", 260, 480}, {"thingi10k_288351", 288, 552},
+                  {"fandisk", 6475, 12946},      {"spot", 11533, 23062},
+                  {"penguin_hr", 13442, 26880},  {"boat", 16210, 32416}};
+  for (const auto& c : surfaces) {
+    const Surface s = io::read_surface(kShared + "/surfaces/" + c.name + ".off");
+    EXPECT_EQ(s.points.size(), c.points) << c.name;
+    EXPECT_EQ(s.triangles.size(), c.triangles) << c.name;
+    EXPECT_GT(enclosed_volume(s), 0) << c.name;  // outward normals, as the README says
+  }
+}
+
+// A strip of ccw triangles; point i has x = 0.1 * i (read_vtk.py checks the last one).
+TriMesh strip(int n) {
+  TriMesh m;
+  for (int i = 0; i < n; ++i) {
+    m.points.push_back({0.1 * i, static_cast<double>(i % 2)});
+    m.point_type.push_back(i < 2 ? PointType::Input : PointType::Free);
+  }
+  for (int i = 0; i + 2 < n; ++i)
+    m.triangles.push_back(i % 2 == 0 ? std::array<int, 3>{i, i + 2, i + 1}
+                                     : std::array<int, 3>{i, i + 1, i + 2});
+  m.subsegments = {{0, 2}, {1, 3}};
+  m.subsegment_source = {0, -1};
+  return m;
+}
+
+TetMesh one_tet_pair() {
+  TetMesh m;
+  m.points = {{0, 0, 0}, {0.1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0.4, 1, 1}};
+  m.tets = {{0, 1, 2, 3}, {1, 2, 3, 4}};
+  m.subfaces = {{0, 2, 1}};
+  m.point_type.assign(5, PointType::Input);
+  return m;
+}
+
+void check_with_vtk(const std::string& path, std::size_t points, std::size_t cells, int type,
+                    const std::string& arrays) {
+  const std::string cmd = "/usr/bin/python3 " + std::string(GDR_VTK_CHECK_SCRIPT) + " " + path +
+                          " " + std::to_string(points) + " " + std::to_string(cells) + " " +
+                          std::to_string(type) + " " + arrays;
+  if (!exists("/usr/bin/python3")) GTEST_SKIP() << "no /usr/bin/python3";
+  const int rc = std::system(cmd.c_str());
+  if (WIFEXITED(rc) && WEXITSTATUS(rc) == 77) GTEST_SKIP() << "python3 has no vtk";
+  EXPECT_TRUE(WIFEXITED(rc) && WEXITSTATUS(rc) == 0) << cmd;
+}
+
+TEST(Write, TriangleRoundTripIsExact) {
+  const TriMesh m = strip(9);
+  io::write_mesh(kOut + "/strip.ele", m);
+  const TriMesh r = io::read_triangle_mesh(kOut + "/strip.node", kOut + "/strip.ele");
+  ASSERT_EQ(r.points.size(), m.points.size());
+  for (std::size_t i = 0; i < m.points.size(); ++i) {
+    EXPECT_EQ(r.points[i].x, m.points[i].x);
+    EXPECT_EQ(r.points[i].y, m.points[i].y);
+  }
+  EXPECT_EQ(r.triangles, m.triangles);
+  EXPECT_EQ(r.subsegments, m.subsegments);
+  EXPECT_EQ(r.subsegment_source, m.subsegment_source);
+  EXPECT_TRUE(validate_trimesh(r, nullptr).valid);
+}
+
+TEST(Write, TetgenRoundTripIsExact) {
+  const TetMesh m = one_tet_pair();
+  io::write_mesh(kOut + "/pair.node", m);
+  const TetMesh r = io::read_tetgen_mesh(kOut + "/pair.node", kOut + "/pair.ele");
+  ASSERT_EQ(r.points.size(), m.points.size());
+  EXPECT_EQ(r.points[1].x, 0.1);
+  EXPECT_EQ(r.tets, m.tets);
+  EXPECT_EQ(r.subfaces, m.subfaces);
+}
+
+TEST(Write, VtkXmlReadsBackInVtk) {
+  const TriMesh m = strip(7);
+  io::Attributes attr;
+  attr.point_data.push_back({"Height", 1, std::vector<double>(7, 1.5)});
+  attr.cell_data.push_back({"MinAngle", 1, std::vector<double>(5, 30.0)});
+  attr.cell_data.push_back({"Vector", 3, std::vector<double>(15, 2.0)});
+  io::write_mesh(kOut + "/strip.vtu", m, attr);
+  io::write_mesh(kOut + "/strip.vtp", m, attr);
+  const TetMesh t = one_tet_pair();
+  io::Attributes tattr;
+  tattr.cell_data.push_back({"Volume", 1, {1.0, 2.0}});
+  io::write_mesh(kOut + "/pair.vtu", t, tattr);
+  std::ifstream in(kOut + "/strip.vtu");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("Name=\"MinAngle\""), std::string::npos);
+  EXPECT_FALSE(exists(kOut + "/strip.vtu.tmp"));
+  check_with_vtk(kOut + "/strip.vtu", 7, 5, 5, "Height MinAngle Vector PointType");
+  check_with_vtk(kOut + "/strip.vtp", 7, 5, 5, "Height MinAngle PointType");
+  check_with_vtk(kOut + "/pair.vtu", 5, 2, 10, "Volume PointType");
+}
+
+TEST(Write, RefusesUnknownExtensionsAndWrongArraySizes) {
+  const TriMesh m = strip(5);
+  EXPECT_NE(io_error([&] { io::write_mesh(kOut + "/strip.obj", m); }).find("unsupported"),
+            std::string::npos);
+  EXPECT_FALSE(io_error([&] { io::write_mesh(kOut + "/pair.vtp", one_tet_pair()); }).empty());
+  io::Attributes bad;
+  bad.cell_data.push_back({"Short", 1, {1.0}});
+  try {
+    io::write_vtu(kOut + "/bad.vtu", m, bad);
+    ADD_FAILURE() << "wrong array size accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.status(), Status::InvalidInput);
+  }
+  EXPECT_FALSE(exists(kOut + "/bad.vtu"));
+  EXPECT_NE(io_error([&] { io::write_vtu("/nonexistent_dir/x.vtu", m); }).find("cannot open"),
+            std::string::npos);
+}
+
+}  // namespace

@@ -1,0 +1,35 @@
+"""Reads a .vtu/.vtp with VTK and checks its sizes and arrays.
+
+usage: read_vtk.py FILE POINTS CELLS CELL_TYPE [ARRAY ...]
+Exit 0 on success, 1 on a mismatch, 77 when VTK is not importable.
+"""
+import sys
+
+try:
+    from vtkmodules.vtkIOXML import vtkXMLPolyDataReader, vtkXMLUnstructuredGridReader
+except ImportError:
+    sys.exit(77)
+
+path, points, cells, cell_type = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), int(sys.argv[4])
+reader = vtkXMLPolyDataReader() if path.endswith(".vtp") else vtkXMLUnstructuredGridReader()
+reader.SetFileName(path)
+reader.Update()
+data = reader.GetOutput()
+errors = []
+if data.GetNumberOfPoints() != points:
+    errors.append("points %d != %d" % (data.GetNumberOfPoints(), points))
+if data.GetNumberOfCells() != cells:
+    errors.append("cells %d != %d" % (data.GetNumberOfCells(), cells))
+for i in range(data.GetNumberOfCells()):
+    if data.GetCellType(i) != cell_type:
+        errors.append("cell %d has type %d" % (i, data.GetCellType(i)))
+        break
+for name in sys.argv[5:]:
+    if data.GetPointData().GetArray(name) is None and data.GetCellData().GetArray(name) is None:
+        errors.append("array %s missing" % name)
+# The last point must read back exactly (binary doubles).
+if points and data.GetPoint(points - 1)[0] != 0.1 * (points - 1):
+    errors.append("last point x %r" % (data.GetPoint(points - 1)[0],))
+if errors:
+    print("; ".join(errors))
+    sys.exit(1)
