@@ -3,8 +3,9 @@
 #   1. installs the Debian packages the build needs (skipped when all are installed),
 #   2. configures (with CUDA when /usr/local/cuda/bin/nvcc exists, with ParaView) and
 #      builds into build/,
-#   3. meshes apps/gdr/examples/gear.poly into out/example.vtu with --check, and renders
-#      out/example.png when the ParaView plugin was built and xvfb-run is present.
+#   3. runs `gdr selfcheck`, meshes apps/gdr/examples/gear.poly into out/example.vtu with
+#      --check, and, when the ParaView plugin was built and xvfb-run is present, meshes it
+#      again through the plugin and renders out/example.png.
 # Options: --build-only (stop after step 2).
 # Environment: GDR_BUILD_DIR (default build), GDR_JOBS (default: nproc),
 #              GDR_CMAKE_ARGS (extra CMake arguments, e.g. "-DGDR_BUILD_BENCHMARKS=OFF").
@@ -78,9 +79,9 @@ mkdir -p out
 
 plugin="$(find "$BUILD_DIR" -path '*/paraview-*/plugins/*' -name '*.so' -print -quit 2>/dev/null || true)"
 if [[ -f scripts/render_example.py && -n "$plugin" ]] && command -v xvfb-run >/dev/null; then
-  step "Rendering out/example.png with ParaView"
-  PV_PLUGIN_PATH="$(dirname "$plugin")" xvfb-run -a pvbatch scripts/render_example.py \
-    out/example.vtu out/example.png ||
+  step "Meshing the example again through the ParaView plugin and rendering out/example.png"
+  xvfb-run -a pvbatch scripts/render_example.py apps/gdr/examples/gear.poly out/example.png \
+    --vtu out/example_paraview.vtu --min-angle 25 --max-area 0.001 --plugin "$plugin" ||
     echo "setup.sh: warning: rendering failed; the mesh itself is in out/example.vtu" >&2
 fi
 step "Done: out/example.vtu (open it in ParaView), out/example.json$([[ -f out/example.png ]] && echo ', out/example.png')"
