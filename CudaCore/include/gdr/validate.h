@@ -71,8 +71,9 @@ ValidationReport validate_trimesh(const TriMesh& mesh, const Pslg* input,
 // 3D: positive tetrahedra, manifold faces, a closed manifold boundary (every subface a
 // mesh face; every boundary face a subface when subfaces are given), every input point
 // present, every input segment a chain of TetMesh::subsegments, every input triangle covered
-// by subfaces in its plane (area sum within 1e-6 relative), and interior faces that are not
-// subfaces locally Delaunay (exact insphere).
+// by subfaces in its plane (the areas they share with it sum to its area within 1e-6
+// relative, so coplanar input triangles may be retriangulated by the mesher), and interior
+// faces that are not subfaces locally Delaunay (exact insphere).
 ValidationReport validate_tetmesh(const TetMesh& mesh, const Surface* input,
                                   const ValidateOptions& options = {});
 

@@ -44,29 +44,58 @@ V3 cross(const V3& a, const V3& b) {
 }
 double dot(const V3& a, const V3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 
-// Whether mesh triangle (p, q, r) lies in input triangle (a, b, c): corners within
-// `tol * longest edge` of its plane and centroid inside it up to `tol` in barycentrics.
+// Coverage of input triangle (a, b, c) by mesh triangles, measured in its own frame where
+// it is the unit right triangle u, v >= 0, u + v <= 1: a mesh triangle counts when its
+// corners are within `tol * longest edge` of the plane, for the area it shares with the
+// input triangle (so coplanar input triangles may be retriangulated freely).
 struct FacetTest {
   Point3 a;
   V3 e1, e2, n;
-  double n2 = 0, plane_tol = 0, tol = 0, area = 0;
+  double n2 = 0, plane_tol = 0, area = 0;
   FacetTest(const Point3& pa, const Point3& pb, const Point3& pc, double tolerance)
-      : a(pa), e1(sub(pb, pa)), e2(sub(pc, pa)), n(cross(e1, e2)), tol(tolerance) {
+      : a(pa), e1(sub(pb, pa)), e2(sub(pc, pa)), n(cross(e1, e2)) {
     n2 = dot(n, n);
     area = 0.5 * std::sqrt(n2);
     const double longest = std::sqrt(std::max({dot(e1, e1), dot(e2, e2), dot(sub(pc, pb), sub(pc, pb))}));
-    plane_tol = tol * longest;
+    plane_tol = tolerance * longest;
   }
-  bool contains(const Point3& p, const Point3& q, const Point3& r) const {
+  // Area shared with the input triangle, in units of the input triangle's area (0 when
+  // off the plane or disjoint).
+  double shared(const Point3& p, const Point3& q, const Point3& r) const {
     const double inv = 1.0 / std::sqrt(n2);
-    for (const Point3* v : {&p, &q, &r})
-      if (std::fabs(dot(sub(*v, a), n)) * inv > plane_tol) return false;
-    const V3 g{(p.x + q.x + r.x) / 3 - a.x, (p.y + q.y + r.y) / 3 - a.y, (p.z + q.z + r.z) / 3 - a.z};
-    // Barycentrics of the centroid's projection: areas of sub-triangles over the whole.
-    const double u = dot(cross(g, e2), n) / n2;
-    const double v = dot(cross(e1, g), n) / n2;
-    const double w = 1.0 - u - v;
-    return u >= -tol && v >= -tol && w >= -tol;
+    std::array<double, 2> poly[8], next[8];
+    int count = 0;
+    for (const Point3* v : {&p, &q, &r}) {
+      const V3 g = sub(*v, a);
+      if (std::fabs(dot(g, n)) * inv > plane_tol) return 0;
+      poly[count++] = {dot(cross(g, e2), n) / n2, dot(cross(e1, g), n) / n2};
+    }
+    // Sutherland-Hodgman against u >= 0, v >= 0, 1 - u - v >= 0.
+    for (int side = 0; side < 3 && count > 0; ++side) {
+      auto dist = [side](const std::array<double, 2>& w) {
+        return side == 0 ? w[0] : side == 1 ? w[1] : 1 - w[0] - w[1];
+      };
+      int m = 0;
+      for (int i = 0; i < count; ++i) {
+        const auto& s0 = poly[i];
+        const auto& s1 = poly[(i + 1) % count];
+        const double d0 = dist(s0), d1 = dist(s1);
+        if (d0 >= 0) next[m++] = s0;
+        if ((d0 >= 0) != (d1 >= 0)) {
+          const double t = d0 / (d0 - d1);
+          next[m++] = {s0[0] + t * (s1[0] - s0[0]), s0[1] + t * (s1[1] - s0[1])};
+        }
+      }
+      count = m;
+      std::copy(next, next + m, poly);
+    }
+    double twice = 0;
+    for (int i = 0; i < count; ++i) {
+      const auto& s0 = poly[i];
+      const auto& s1 = poly[(i + 1) % count];
+      twice += s0[0] * s1[1] - s1[0] * s0[1];
+    }
+    return std::fabs(twice);  // the unit right triangle has twice-area 1
   }
 };
 
@@ -239,8 +268,8 @@ ValidationReport validate_tetmesh(const TetMesh& mesh, const Surface* input,
                    std::to_string(S[s][1]) + ") is not recovered as a chain of subsegments");
     }
 
-    // Facets: flood fill the subfaces lying in each input triangle from those at its first
-    // corner, and compare the area they cover with the triangle's area.
+    // Facets: flood fill the subfaces sharing area with each input triangle, from those at
+    // its first corner, and compare the area they cover with the triangle's area.
     const auto& F = mesh.subfaces;
     std::vector<std::size_t> vstart(nv + 1, 0);
     std::vector<int> vfaces;
@@ -278,31 +307,29 @@ ValidationReport validate_tetmesh(const TetMesh& mesh, const Surface* input,
       }
       const FacetTest test(P[a], P[b], P[c], options.segment_tolerance);
       if (test.area == 0) continue;  // a degenerate input triangle covers nothing
-      auto inside = [&](int f) { return test.contains(P[F[f][0]], P[F[f][1]], P[F[f][2]]); };
       std::unordered_set<int> seen;
-      std::vector<int> stack;
-      for (std::size_t j = vstart[a]; j < vstart[a + 1]; ++j)
-        if (inside(vfaces[j]) && seen.insert(vfaces[j]).second) stack.push_back(vfaces[j]);
+      std::vector<std::pair<int, double>> stack;
+      auto visit = [&](int f) {
+        if (seen.count(f)) return;
+        const double part = test.shared(P[F[f][0]], P[F[f][1]], P[F[f][2]]);
+        if (part > 0) {
+          seen.insert(f);
+          stack.push_back({f, part});
+        }
+      };
+      for (std::size_t j = vstart[a]; j < vstart[a + 1]; ++j) visit(vfaces[j]);
       double covered = 0;
       while (!stack.empty()) {
-        const int f = stack.back();
+        const int f = stack.back().first;
+        covered += stack.back().second;
         stack.pop_back();
-        const Point3 &p = P[F[f][0]], &q = P[F[f][1]], &s = P[F[f][2]];
-        const V3 nf = cross(sub(q, p), sub(s, p));
-        covered += 0.5 * std::sqrt(dot(nf, nf));
         for (int e = 0; e < 3; ++e) {
           const int u = std::min(F[f][e], F[f][(e + 1) % 3]), w = std::max(F[f][e], F[f][(e + 1) % 3]);
           const auto run = sub_edges.find(u, w, -1);
-          for (const Keyed* g = run.first; g != run.second; ++g) {
-            const int h = static_cast<int>(g->item / 3);
-            if (h != f && !seen.count(h) && inside(h)) {
-              seen.insert(h);
-              stack.push_back(h);
-            }
-          }
+          for (const Keyed* g = run.first; g != run.second; ++g) visit(static_cast<int>(g->item / 3));
         }
       }
-      if (std::fabs(covered - test.area) > area_tol * test.area) facet_ok[k] = 0;
+      if (std::fabs(covered - 1.0) > area_tol) facet_ok[k] = 0;
     }
     for (std::size_t k = 0; k < IT.size(); ++k) {
       if (facet_ok[k]) continue;

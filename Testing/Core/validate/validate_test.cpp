@@ -4,6 +4,7 @@
 #include <chrono>
 #include <map>
 
+#include "gdr/io.h"
 #include "gdr/validate.h"
 #include "predicates/predicates.h"
 
@@ -222,6 +223,18 @@ TEST(ValidateTetMesh, CubeSplitPasses) {
   std::size_t angles = 0;
   for (auto c : r.quality.histogram) angles += c;
   EXPECT_EQ(angles, 30u);
+}
+
+TEST(ValidateTetMesh, FacetsMayBeRetriangulated) {
+  TetMesh m = cube5();
+  m.subfaces = boundary_faces(m);
+  const Surface s = io::read_off(std::string(GDR_DATA_DIR) + "/cube.off");  // other diagonals
+  ValidationReport r = validate_tetmesh(m, &s);
+  EXPECT_TRUE(r.valid) << r.summary();
+  m.points[7].z = 1 + 1e-3;  // corner (1,1,1) moves off the input planes
+  r = validate_tetmesh(m, &s);
+  EXPECT_EQ(r.missing_points, 1u);
+  EXPECT_GE(r.missing_facets, 2u) << r.summary();
 }
 
 TEST(ValidateTetMesh, InvertedTet) {
