@@ -29,7 +29,9 @@ Surface read_stl(const std::string& path);   // ASCII or binary
 Surface read_surface(const std::string& path);
 
 // TetGen .node/.ele (4 or 10 nodes per tetrahedron, the first 4 used) as a TetMesh, with the
-// .face beside the .ele, when there is one, as subfaces. Orientation is kept as in the file.
+// .face beside the .ele, when there is one, as subfaces. TetGen files store tetrahedra with
+// orient3d < 0; they are read (and written by write_tetgen) with two corners swapped so that
+// TetMesh tetrahedra are positive (orient3d > 0) as gdr/validate.h defines.
 TetMesh read_tetgen_mesh(const std::string& node_path, const std::string& ele_path);
 
 // Reads any supported input by extension: .poly (2D Triangle or 3D TetGen by its header),

@@ -93,7 +93,8 @@ TetMesh read_tetgen_mesh(const std::string& node_path, const std::string& ele_pa
     const std::string what = "tetrahedron " + std::to_string(i);
     file.expect(t, 5, what);
     file.integer(t[0], "index of " + what);
-    mesh.tets.push_back({vertex_index(file, t[1], nodes, what), vertex_index(file, t[2], nodes, what),
+    // TetGen's tetrahedra have orient3d < 0; swapping two corners gives ours (> 0).
+    mesh.tets.push_back({vertex_index(file, t[2], nodes, what), vertex_index(file, t[1], nodes, what),
                          vertex_index(file, t[3], nodes, what), vertex_index(file, t[4], nodes, what)});
   }
   // Boundary / constrained faces, as TetGen and write_tetgen store them beside the .ele.

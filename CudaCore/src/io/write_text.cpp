@@ -78,8 +78,11 @@ void write_triangle(const std::string& base, const TriMesh& mesh) {
 void write_tetgen(const std::string& base, const TetMesh& mesh) {
   check_indices("a tetrahedron", mesh.points.size(), mesh.tets);
   check_indices("a subface", mesh.points.size(), mesh.subfaces);
-  std::string ele = std::to_string(mesh.tets.size()) + " 4 0\n";
-  append_elements(ele, mesh.tets, nullptr);
+  // Files follow TetGen's orientation (orient3d < 0): swap two corners of ours.
+  std::vector<std::array<int, 4>> tets(mesh.tets);
+  for (auto& t : tets) std::swap(t[0], t[1]);
+  std::string ele = std::to_string(tets.size()) + " 4 0\n";
+  append_elements(ele, tets, nullptr);
   std::string face = std::to_string(mesh.subfaces.size()) + " 0\n";
   append_elements(face, mesh.subfaces, nullptr);
   write_file_atomically(base + ".node", node_file_3d(mesh.points));

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 #include "gdr/error.h"
@@ -259,6 +260,31 @@ TEST(Write, TetgenRoundTripIsExact) {
   EXPECT_EQ(r.points[1].x, 0.1);
   EXPECT_EQ(r.tets, m.tets);
   EXPECT_EQ(r.subfaces, m.subfaces);
+}
+
+TEST(Write, TetgenFilesUseTetgensOrientation) {
+  // Data/lshape_tetgen.* is TetGen 1.5's `tetgen -pq lshape.poly` output.
+  const TetMesh m = io::read_tetgen_mesh(kData + "/lshape_tetgen.node", kData + "/lshape_tetgen.ele");
+  EXPECT_EQ(m.tets.size(), 12u);
+  EXPECT_FALSE(m.subfaces.empty());
+  const Surface s = io::read_tetgen_poly(kData + "/lshape.poly");
+  const ValidationReport r = validate_tetmesh(m, &s);
+  EXPECT_TRUE(r.valid) << r.summary();
+  EXPECT_DOUBLE_EQ(r.quality.total_measure, 3.0);
+  io::write_tetgen(kOut + "/lshape_again", m);
+  std::ifstream a(kData + "/lshape_tetgen.ele"), b(kOut + "/lshape_again.ele");
+  std::string la, lb;
+  std::getline(a, la), std::getline(a, la);  // skip the headers, compare the first tet
+  std::getline(b, lb), std::getline(b, lb);
+  auto corners = [](const std::string& line) {
+    std::istringstream in(line);
+    long long i, v[4];
+    in >> i >> v[0] >> v[1] >> v[2] >> v[3];
+    return std::vector<long long>(v, v + 4);
+  };
+  std::vector<long long> ca = corners(la), cb = corners(lb);
+  for (auto& v : ca) v -= 1;  // TetGen wrote 1-based, we write 0-based
+  EXPECT_EQ(ca, cb);
 }
 
 TEST(Write, VtkXmlReadsBackInVtk) {
