@@ -320,8 +320,15 @@ void TestPlate()
   filter->SetBackendToCPU();
   filter->SetMinimumAngle(25);
   filter->RemoveExteriorOn();
+  int progressEvents = 0;
+  vtkNew<vtkCallbackCommand> countProgress;
+  countProgress->SetClientData(&progressEvents);
+  countProgress->SetCallback(
+    [](vtkObject*, unsigned long, void* client, void*) { ++*static_cast<int*>(client); });
+  filter->AddObserver(vtkCommand::ProgressEvent, countProgress);
   filter->Update();
   CHECK(log.Errors.empty());
+  CHECK(progressEvents >= 2); // the engine's iterations and the final 1.0
   CheckArrays(filter);
   Validate(filter->GetOutput(), PslgOf(plate), 25, true);
 
