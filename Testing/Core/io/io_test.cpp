@@ -173,6 +173,34 @@ TEST(BrokenFiles, EveryTruncationOfAGoodFileFailsCleanly) {
   EXPECT_GT(errors, 0);
 }
 
+TEST(BrokenFiles, SingleByteCorruptionsGiveIoErrorsOnly) {
+  // Every third byte of each good file replaced by troublesome characters: the readers
+  // either accept the result or throw IoError, nothing else.
+  const char* files[] = {"square_hole.poly", "sharp_angle.poly", "cube.off", "lshape.poly",
+                         "tet.smesh", "tet_ascii.stl", "tet_binary.stl"};
+  for (const char* name : files) {
+    std::ifstream in(kData + "/" + name, std::ios::binary);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string ext = std::string(name).substr(std::string(name).rfind('.'));
+    const std::string path = kOut + "/corrupt" + ext;
+    for (std::size_t i = 0; i < text.size(); i += 3) {
+      for (char c : {'-', 'x', '\n'}) {
+        std::string bad = text;
+        bad[i] = c;
+        std::ofstream(path, std::ios::binary | std::ios::trunc) << bad;
+        try {
+          if (ext == ".off") io::read_off(path);
+          else if (ext == ".stl") io::read_stl(path);
+          else if (io::detect_input_kind(path) == io::InputKind::Pslg2d) io::read_poly(path);
+          else io::read_tetgen_poly(path);
+        } catch (const Error& e) {
+          ASSERT_EQ(e.status(), Status::IoError) << name << " byte " << i << ": " << e.what();
+        }
+      }
+    }
+  }
+}
+
 TEST(SharedData, AllPslgsAndSurfacesRead) {
   if (!exists(kShared + "/README.md")) GTEST_SKIP() << "no shared data at " << kShared;
   const struct {
