@@ -116,7 +116,7 @@ TEST(Predicates, Conventions) {
   EXPECT_EQ(pred::in_diametral_circle(s0, s1, p), 1);
   EXPECT_EQ(pred::in_diametral_circle(s0, s1, q), 0);
   EXPECT_EQ(pred::in_diametral_circle(s0, s1, r), -1);
-  const double t[3] = {0.5, 0.5, 0.1};
+  const double t[3] = {0.5, 0.1, 0.1};
   EXPECT_EQ(pred::in_diametral_sphere(a, b, t), 1);
   EXPECT_EQ(pred::in_diametral_sphere(a, b, up), -1);
 }
