@@ -2,6 +2,7 @@
 // not the run) and their own peak RSS from wait4.
 #include <fcntl.h>
 #include <poll.h>
+#include <sched.h>
 #include <signal.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -29,6 +30,13 @@ ProcessResult run_process(const std::vector<std::string>& argv, double timeout_s
   const pid_t pid = fork();
   if (pid < 0) throw gdr::Error(gdr::Status::InternalError, "fork failed");
   if (pid == 0) {
+    // An OpenMP runtime with thread binding pins our main thread, and children inherit the
+    // mask: give the baseline every CPU again so multi-threaded ones (TBB) see them all.
+    cpu_set_t all;
+    CPU_ZERO(&all);
+    const long cpus = sysconf(_SC_NPROCESSORS_ONLN);
+    for (long i = 0; i < cpus && i < CPU_SETSIZE; ++i) CPU_SET(i, &all);
+    sched_setaffinity(0, sizeof all, &all);
     dup2(fds[1], STDOUT_FILENO);
     close(fds[0]);
     close(fds[1]);
