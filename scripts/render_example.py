@@ -18,6 +18,7 @@ xvfb-run on machines without one.
 import argparse
 import glob
 import os
+import shutil
 import sys
 import tempfile
 
@@ -275,7 +276,6 @@ def main():
 
     # Right: the histogram of the minimum angles.
     chart = CreateView("XYBarChartView")
-    chart.ViewSize = [width - int(0.6 * width), height]
     bars = Show(histogram, chart)
     bars.UseIndexForXAxis = 0
     bars.XArrayName = "bin_extents"
@@ -284,8 +284,8 @@ def main():
     chart.ChartTitle = "Minimum angle per triangle"
     chart.BottomAxisTitle = "degrees"
     chart.LeftAxisTitle = "triangles"
-    Render(chart)
 
+    # Each view saved at its own size, then put side by side.
     left_w = int(0.6 * width)
     left_png = os.path.join(workdir, "mesh.png")
     right_png = os.path.join(workdir, "histogram.png")
@@ -296,6 +296,7 @@ def main():
     Render(chart)
     SaveScreenshot(right_png, chart, ImageResolution=[width - left_w, height])
     side_by_side(left_png, right_png, args.output)
+    shutil.rmtree(workdir, ignore_errors=True)
     print("picture written to", args.output)
 
 
