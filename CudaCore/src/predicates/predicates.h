@@ -42,6 +42,7 @@ GDR_HD_INLINE int orient3d_raw(const double* p, const double* q, const double* r
   double o[12], t[24];
   int len = 0;
   for (int i = 0; i < 4; ++i) {
+    if (pts[i][2] == 0.0) continue;  // the term vanishes
     const double* rest[3];
     for (int j = 0, k = 0; j < 4; ++j)
       if (j != i) rest[k++] = pts[j];
@@ -49,6 +50,7 @@ GDR_HD_INLINE int orient3d_raw(const double* p, const double* q, const double* r
     const int tn = scale_expansion(on, o, (i % 2 == 0) ? pts[i][2] : -pts[i][2], t);
     accumulate(h, len, tn, t);
   }
+  if (len == 0) h[len++] = 0.0;
   return len;
 }
 
@@ -85,6 +87,7 @@ GDR_HD inline double incircle_exact(const double* a, const double* b, const doub
     const double* rest[3];
     for (int j = 0, k = 0; j < 4; ++j)
       if (j != i) rest[k++] = pts[j];
+    if (pts[i][0] == 0.0 && pts[i][1] == 0.0) continue;  // zero lift: no term
     const int on = orient2d_raw(rest[0], rest[1], rest[2], o);
     accumulate_lifted(acc, len, pts[i], 2, (i % 2 == 0) ? 1 : -1, on, o, t1, t2);
   }
@@ -102,10 +105,57 @@ GDR_HD inline double insphere_exact(const double* a, const double* b, const doub
     const double* rest[4];
     for (int j = 0, k = 0; j < 5; ++j)
       if (j != i) rest[k++] = pts[j];
+    if (pts[i][0] == 0.0 && pts[i][1] == 0.0 && pts[i][2] == 0.0) continue;  // zero lift
     const int on = orient3d_raw(rest[0], rest[1], rest[2], rest[3], o);
     accumulate_lifted(acc, len, pts[i], 3, (i % 2 == 0) ? -1 : 1, on, o, t1, t2);
   }
   return most_significant(len, acc);
+}
+
+// The determinants are translation invariant: when every coordinate difference to the last
+// point is exact (common for nearby or lattice points), evaluating on the differences, with the
+// last point at the origin, gives shorter expansions. Returns false when a difference rounds.
+template <int N>
+GDR_HD_INLINE bool translate_exactly(const double* const* pts, int dim, double (*out)[3]) {
+  for (int i = 0; i < N; ++i)
+    for (int k = 0; k < dim; ++k) {
+      double x, y;
+      two_diff(pts[i][k], pts[N - 1][k], x, y);
+      if (y != 0.0) return false;
+      out[i][k] = x;
+    }
+  return true;
+}
+
+GDR_HD inline double orient2d_stage2(const double* a, const double* b, const double* c) {
+  const double* p[3] = {a, b, c};
+  double t[3][3];
+  if (translate_exactly<3>(p, 2, t)) return orient2d_exact(t[0], t[1], t[2]);
+  return orient2d_exact(a, b, c);
+}
+
+GDR_HD inline double incircle_stage2(const double* a, const double* b, const double* c,
+                                     const double* d) {
+  const double* p[4] = {a, b, c, d};
+  double t[4][3];
+  if (translate_exactly<4>(p, 2, t)) return incircle_exact(t[0], t[1], t[2], t[3]);
+  return incircle_exact(a, b, c, d);
+}
+
+GDR_HD inline double orient3d_stage2(const double* a, const double* b, const double* c,
+                                     const double* d) {
+  const double* p[4] = {a, b, c, d};
+  double t[4][3];
+  if (translate_exactly<4>(p, 3, t)) return orient3d_exact(t[0], t[1], t[2], t[3]);
+  return orient3d_exact(a, b, c, d);
+}
+
+GDR_HD inline double insphere_stage2(const double* a, const double* b, const double* c,
+                                     const double* d, const double* e) {
+  const double* p[5] = {a, b, c, d, e};
+  double t[5][3];
+  if (translate_exactly<5>(p, 3, t)) return insphere_exact(t[0], t[1], t[2], t[3], t[4]);
+  return insphere_exact(a, b, c, d, e);
 }
 
 // -(a-p).(b-p) exactly; each coordinate difference is first made exact as a 2-component
@@ -247,7 +297,7 @@ GDR_HD_INLINE double orient2d(const double* a, const double* b, const double* c,
     return det;
   }
   detail::report(stage, 2);
-  return detail::orient2d_exact(a, b, c);
+  return detail::orient2d_stage2(a, b, c);
 }
 
 // Stage 1 only: the determinant when its sign is certified, else 0.0 (uncertain).
@@ -289,7 +339,7 @@ GDR_HD_INLINE double incircle(const double* a, const double* b, const double* c,
     return det;
   }
   detail::report(stage, 2);
-  return detail::incircle_exact(a, b, c, d);
+  return detail::incircle_stage2(a, b, c, d);
 }
 
 // Stage 1 only: the determinant when its sign is certified, else 0.0 (uncertain).
@@ -330,7 +380,7 @@ GDR_HD_INLINE double orient3d(const double* a, const double* b, const double* c,
     return det;
   }
   detail::report(stage, 2);
-  return detail::orient3d_exact(a, b, c, d);
+  return detail::orient3d_stage2(a, b, c, d);
 }
 
 // Stage 1 only: the determinant when its sign is certified, else 0.0 (uncertain).
@@ -398,7 +448,7 @@ GDR_HD_INLINE double insphere(const double* a, const double* b, const double* c,
     return det;
   }
   detail::report(stage, 2);
-  return detail::insphere_exact(a, b, c, d, e);
+  return detail::insphere_stage2(a, b, c, d, e);
 }
 
 // Stage 1 only: the determinant when its sign is certified, else 0.0 (uncertain).
