@@ -30,6 +30,9 @@ bool is_generator_spec(const std::string& input);
 gdr::Pslg generate_pslg(const std::string& spec);
 void write_poly(const std::string& path, const gdr::Pslg& pslg);
 double convex_hull_area(const std::vector<gdr::Point2>& points);
+// Smallest angle between two segments sharing an endpoint, in degrees (180 if none meet).
+// Issue 3's Steiner-count target applies to inputs without angles below 60 degrees.
+double smallest_input_angle(const gdr::Pslg& pslg);
 
 // Result of one case. Numbers that do not apply stay negative and print as blanks.
 struct Result {
@@ -38,7 +41,7 @@ struct Result {
   std::string message;
   std::string valid = "-";    // yes | no | skipped | - (baselines)
   std::string input_label;
-  double min_angle_bound = -1, max_edge = -1;
+  double min_angle_bound = -1, max_edge = -1, min_input_angle = -1;
   long long input_points = -1, input_segments = -1;
   long long points = -1, elements = -1, steiner = -1;
   double cdt_s = -1, refine_s = -1, total_s = -1;

@@ -134,4 +134,23 @@ double convex_hull_area(const std::vector<gdr::Point2>& input) {
   return std::abs(area2) / 2;
 }
 
+double smallest_input_angle(const gdr::Pslg& pslg) {
+  std::vector<std::vector<double>> directions(pslg.points.size());
+  for (const auto& seg : pslg.segments) {
+    const gdr::Point2& a = pslg.points[seg[0]];
+    const gdr::Point2& b = pslg.points[seg[1]];
+    directions[seg[0]].push_back(std::atan2(b.y - a.y, b.x - a.x));
+    directions[seg[1]].push_back(std::atan2(a.y - b.y, a.x - b.x));
+  }
+  const double pi = 3.14159265358979323846;
+  double smallest = pi;
+  for (auto& d : directions) {
+    if (d.size() < 2) continue;
+    std::sort(d.begin(), d.end());
+    for (std::size_t i = 0; i + 1 < d.size(); ++i) smallest = std::min(smallest, d[i + 1] - d[i]);
+    smallest = std::min(smallest, d.front() + 2 * pi - d.back());
+  }
+  return smallest * 180 / pi;
+}
+
 }  // namespace gdr_bench

@@ -374,6 +374,7 @@ int main(int argc, char** argv) {
         if (is_2d_runner(c.runner)) {
           r.min_angle_bound = c.number("min_angle", 20.0);
           r.max_edge = max_edge;
+          r.min_input_angle = smallest_input_angle(inputs.pslg(c.input));
         }
       } catch (const gdr::Error& e) {
         r.status = "error";

@@ -67,7 +67,7 @@ void write_csv(const std::string& path, const std::vector<Result>& results,
                const std::string& date, const std::string& machine) {
   std::ofstream f(path);
   if (!f) throw gdr::Error(gdr::Status::IoError, path + ": cannot write");
-  f << "date,machine,case,runner,input,params,status,valid,min_angle_bound,max_edge,"
+  f << "date,machine,case,runner,input,params,status,valid,min_angle_bound,max_edge,min_input_angle,"
        "input_points,input_segments,points,elements,steiner_points,cdt_s,refine_s,total_s,"
        "steiner_per_s_refine,steiner_per_s_total,min_quality_deg,bad_area_pct,"
        "peak_device_bytes,device_bytes_per_element,peak_rss_mb,speedup_vs_cgal_refine,"
@@ -86,7 +86,7 @@ void write_csv(const std::string& path, const std::vector<Result>& results,
     f << csv_escape(date) << ',' << csv_escape(machine) << ',' << csv_escape(r.c.name) << ','
       << r.c.runner << ',' << csv_escape(r.input_label) << ',' << csv_escape(params.str()) << ','
       << r.status << ',' << r.valid << ',' << num(r.min_angle_bound) << ',' << num(r.max_edge)
-      << ',' << fmt_int(r.input_points) << ',' << fmt_int(r.input_segments) << ','
+      << ',' << num(r.min_input_angle) << ',' << fmt_int(r.input_points) << ',' << fmt_int(r.input_segments) << ','
       << fmt_int(r.points) << ',' << fmt_int(r.elements) << ',' << fmt_int(r.steiner) << ','
       << num(r.cdt_s) << ',' << num(r.refine_s) << ',' << num(r.total_s) << ','
       << num(steiner_rate(r, r.refine_s)) << ',' << num(steiner_rate(r, r.total_s)) << ','
@@ -104,14 +104,14 @@ std::string markdown_table(const std::vector<Result>& results, const std::string
                            const std::string& machine) {
   std::ostringstream md;
   md << "Run " << date << " on " << machine << "\n\n"
-     << "| case | runner | status | valid | points | elements | Steiner | CDT s | refine s | "
+     << "| case | runner | status | valid | input angle | points | elements | Steiner | CDT s | refine s | "
         "total s | Steiner/s refine | Steiner/s total | min angle | bad area % | peak dev MB | "
         "dev B/elem | x CGAL refine | x CGAL total | Steiner / CGAL | x CPU refine | "
         "x CPU total |\n"
-     << "|---|---|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
+     << "|---|---|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
   for (const auto& r : results) {
     md << "| " << r.c.name << " | " << r.c.runner << " | " << r.status << " | " << r.valid
-       << " | " << fmt_int(r.points) << " | " << fmt_int(r.elements) << " | "
+       << " | " << fmt(r.min_input_angle) << " | " << fmt_int(r.points) << " | " << fmt_int(r.elements) << " | "
        << fmt_int(r.steiner) << " | " << fmt(r.cdt_s) << " | " << fmt(r.refine_s) << " | "
        << fmt(r.total_s) << " | " << fmt(steiner_rate(r, r.refine_s)) << " | "
        << fmt(steiner_rate(r, r.total_s)) << " | " << fmt(r.min_quality_deg) << " | "
@@ -121,7 +121,7 @@ std::string markdown_table(const std::vector<Result>& results, const std::string
        << fmt(r.speedup_vs_cgal_total) << " | " << fmt(r.steiner_vs_cgal) << " | "
        << fmt(r.speedup_vs_cpu_refine) << " | " << fmt(r.speedup_vs_cpu_total) << " |\n";
   }
-  md << "\nmin angle: smallest triangle angle (2D) or smallest dihedral angle (3D), degrees. "
+  md << "\ninput angle: smallest angle between input segments (2D). min angle: smallest triangle angle (2D) or smallest dihedral angle (3D), degrees. "
         "x CGAL / x CPU: speed-up over cgal-mesh2 / gdr-cpu on the same case (>1 is faster). "
         "Steiner / CGAL: Steiner points relative to cgal-mesh2.\n";
   for (const auto& r : results)
