@@ -4,6 +4,8 @@
 
 #include <cstdlib>
 #include <cstring>
+#include <map>
+#include <mutex>
 #include <new>
 #include <string>
 #include <vector>
@@ -18,18 +20,54 @@ struct Ops<Cpu> {
   static constexpr bool is_gpu = false;
   static constexpr std::ptrdiff_t serial_below = 4096;  // OpenMP start-up costs more below this
 
+  // Allocations are cached by power-of-two size class: phases allocate scratch arrays every
+  // iteration, and fresh pages from the OS would cost a page fault each.
+  static std::size_t size_class(std::size_t bytes) {
+    std::size_t c = 4096;
+    while (c < bytes) c <<= 1;
+    return c;
+  }
+  struct Pool {
+    std::mutex lock;
+    std::multimap<std::size_t, void*> free_blocks;
+    ~Pool() {
+      for (auto& b : free_blocks) std::free(b.second);
+    }
+  };
+  static Pool& pool() {
+    static Pool p;
+    return p;
+  }
   static void* allocate(std::size_t bytes) {
-    if (bytes == 0) bytes = 1;
-    void* p = std::aligned_alloc(64, (bytes + 63) / 64 * 64);
+    const std::size_t c = size_class(bytes);
+    {
+      std::lock_guard<std::mutex> g(pool().lock);
+      auto it = pool().free_blocks.find(c);
+      if (it != pool().free_blocks.end()) {
+        void* p = it->second;
+        pool().free_blocks.erase(it);
+        memory_counter<Cpu>().add(c);
+        return p;
+      }
+    }
+    void* p = std::aligned_alloc(64, c);
     if (!p)
       throw Error(Status::OutOfDeviceMemory,
                   "out of host memory allocating " + std::to_string(bytes) + " bytes");
-    memory_counter<Cpu>().add(bytes);
+    memory_counter<Cpu>().add(c);
     return p;
   }
   static void deallocate(void* p, std::size_t bytes) {
-    std::free(p);
-    memory_counter<Cpu>().sub(bytes == 0 ? 1 : bytes);
+    const std::size_t c = size_class(bytes);
+    std::lock_guard<std::mutex> g(pool().lock);
+    pool().free_blocks.emplace(c, p);
+    memory_counter<Cpu>().sub(c);
+  }
+  // Returns cached blocks to the system (end of a run).
+  static void trim() {
+    std::lock_guard<std::mutex> g(pool().lock);
+    for (auto& b : pool().free_blocks) std::free(b.second);
+    pool().free_blocks.clear();
   }
   static void copy_to_space(void* dst, const void* src, std::size_t bytes) {
     std::memcpy(dst, src, bytes);

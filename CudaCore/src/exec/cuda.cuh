@@ -70,6 +70,13 @@ struct Ops<Cuda> {
   static void zero(void* p, std::size_t bytes) {
     detail::cuda_check(cudaMemsetAsync(p, 0, bytes, 0), "memset");
   }
+  // Returns cached pool memory to the driver (end of a run).
+  static void trim() {
+    cudaDeviceSynchronize();
+    cudaMemPool_t pool;
+    if (cudaDeviceGetDefaultMemPool(&pool, 0) == cudaSuccess) cudaMemPoolTrimTo(pool, 0);
+    cudaGetLastError();
+  }
   static void synchronize() { detail::cuda_check(cudaDeviceSynchronize(), "synchronize"); }
 
   template <class F>

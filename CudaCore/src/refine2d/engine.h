@@ -1,0 +1,268 @@
+// gDP2d refinement loop (paper Algorithm 1), written once for any execution space.
+// engine_cpu.cpp instantiates it for OpenMP, engine_cuda.cu for CUDA.
+#pragma once
+#include <chrono>
+#include <string>
+#include <vector>
+
+#include "exec/algorithms.h"
+#include "gdr/progress.h"
+#include "gdr/refine2d.h"
+#include "refine2d/kernels.h"
+#include "refine2d/mesh2d.h"
+
+namespace gdr::r2d {
+
+struct EngineParams {
+  Criteria criteria;
+  long long max_steiner = -1;  // -1: unlimited
+  int max_iterations = 100000;
+};
+
+struct EngineResult {
+  int iterations = 0;
+  long long inserted = 0;
+  bool cap_reached = false;
+  bool stalled = false;
+  std::size_t peak_bytes = 0;
+  std::vector<PhaseTime> phases;
+};
+
+// Runs refinement on `mesh` in place (uploaded from and downloaded to the host copy).
+template <class Space>
+EngineResult refine_mesh(HostMesh& mesh, const EngineParams& params, const Callbacks& cb);
+
+namespace detail {
+
+class PhaseClock {
+ public:
+  explicit PhaseClock(std::vector<PhaseTime>& phases) : phases_(phases) {}
+  template <class Space>
+  void stop(const char* name) {
+    exec::Ops<Space>::synchronize();
+    const auto now = std::chrono::steady_clock::now();
+    const double s = std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+    for (auto& p : phases_)
+      if (p.name == name) {
+        p.seconds += s;
+        return;
+      }
+    phases_.push_back(PhaseTime{name, s});
+  }
+  void restart() { last_ = std::chrono::steady_clock::now(); }
+
+ private:
+  std::vector<PhaseTime>& phases_;
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+template <class Space>
+void compact_triangles(DeviceMesh<Space>& dm) {
+  using Ops = exec::Ops<Space>;
+  const int n = dm.ntri;
+  exec::Buffer<Space, int> index(n);
+  int* idx = index.data();
+  const int* flag = dm.tflag.data();
+  Ops::for_each(n, [=] GDR_HD(long long t) { idx[t] = (flag[t] & kDead) ? 0 : 1; });
+  const int live = static_cast<int>(Ops::exclusive_scan(idx, idx, n));
+  exec::Buffer<Space, int> tv(3 * std::size_t(live)), tn(3 * std::size_t(live)),
+      ts(3 * std::size_t(live)), tf(live);
+  Ops::for_each(n, MoveTriangles{dm.view(), idx, tv.data(), tn.data(), ts.data(), tf.data()});
+  dm.tv.swap(tv);
+  dm.tn.swap(tn);
+  dm.ts.swap(ts);
+  dm.tflag.swap(tf);
+  dm.ntri = live;
+  dm.mark.resize_discard(live);
+  dm.rmark.resize_discard(live);
+  dm.aux.resize_discard(live);
+}
+
+}  // namespace detail
+
+template <class Space>
+EngineResult refine_mesh(HostMesh& host, const EngineParams& params, const Callbacks& cb) {
+  using Ops = exec::Ops<Space>;
+  EngineResult res;
+  exec::memory_counter<Space>().peak = exec::memory_counter<Space>().current;
+  const std::size_t mem_base = exec::memory_counter<Space>().current;
+  detail::PhaseClock clock(res.phases);
+
+  DeviceMesh<Space> dm;
+  dm.upload(host);
+  clock.stop<Space>("upload");
+
+  exec::Buffer<Space, int> list, failed, point_id, count, error;
+  exec::Buffer<Space, Candidate> cand_all, cand;
+  exec::Buffer<Space, CavityTuple> tuples;
+  error.resize_discard(1);
+  error.zero();
+  int idle_iterations = 0;
+  bool allow_deferment = true;
+  const Criteria crit = params.criteria;
+
+  for (int iter = 0; iter < params.max_iterations; ++iter) {
+    if (cb.abort && cb.abort()) throw Error(Status::Aborted, "refinement aborted by the caller");
+    clock.restart();
+    // Line 3: collect encroached subsegments and bad triangles into one list (S1, S4).
+    const std::size_t nl =
+        exec::compact_indices<Space>(4 * std::size_t(dm.ntri), CollectElements{dm.view(), crit}, list);
+    clock.stop<Space>("collect");
+    if (nl == 0) break;
+    res.iterations = iter + 1;
+
+    // Lines 5-6: splitting points, priorities, point location.
+    cand_all.resize_discard(nl);
+    Ops::for_each(nl, ComputeSplittingPoints{dm.view(), crit, list.data(), cand_all.data()});
+    clock.stop<Space>("split+locate");
+
+    // Line 7: filter, one point per triangle (S3).
+    dm.mark.zero();
+    Ops::for_each(nl, ClaimStart{dm.view(), cand_all.data()});
+    {
+      const Candidate* ca = cand_all.data();
+      const u64* mk = dm.mark.data();
+      const std::size_t ns = exec::compact_indices<Space>(
+          nl,
+          [=] GDR_HD(long long j) { return ca[j].kind >= 0 && mk[ca[j].start] == ca[j].prio; },
+          list);
+      cand.resize_discard(ns);
+      Candidate* cs = cand.data();
+      const int* sel = list.data();
+      Ops::for_each(ns, [=] GDR_HD(long long j) { cs[j] = ca[sel[j]]; });
+    }
+    const std::size_t ns = cand.size();
+    dm.mark.zero();  // survivors now claim their cavities from scratch
+    dm.rmark.zero();
+    clock.stop<Space>("filter");
+
+    // Cavities by ExpandList (S2), deferring stragglers to the next iteration (S5).
+    failed.resize_discard(ns);
+    failed.zero();
+    {
+      std::size_t n0 = 0;
+      // Initial tuples: the start triangle, and the far side of a split subsegment.
+      count.resize_discard(ns);
+      const Candidate* cs = cand.data();
+      const MeshView mv = dm.view();
+      int* cnt = count.data();
+      Ops::for_each(ns, [=] GDR_HD(long long j) {
+        const Candidate& c = cs[j];
+        cnt[j] = (c.kind == 0 && mv.tn[3 * c.et + c.ek] >= 0) ? 2 : 1;
+      });
+      n0 = static_cast<std::size_t>(Ops::exclusive_scan(cnt, cnt, ns));
+      tuples.resize_discard(n0);
+      CavityTuple* tp = tuples.data();
+      Ops::for_each(ns, [=] GDR_HD(long long j) {
+        const Candidate& c = cs[j];
+        const int o = cnt[j];
+        tp[o] = CavityTuple{static_cast<int>(j), c.start, kForceIn};
+        if (c.kind == 0 && mv.tn[3 * c.et + c.ek] >= 0)
+          tp[o + 1] = CavityTuple{static_cast<int>(j), mv.tn[3 * c.et + c.ek] / 3, kForceIn};
+      });
+      exec::ExpandListLimits lim;
+      if (allow_deferment) {
+        lim.defer_after_rounds = 16;
+        lim.defer_below = ns / 64 + 32;
+      }
+      const exec::ExpandListResult er = exec::expand_list<Space, 3>(
+          tuples, n0, GrowCavity{dm.view(), cand.data(), failed.data(), crit.chew}, lim);
+      // Deferred cavities must finish next time, or big ones would block their
+      // neighbourhood forever.
+      allow_deferment = !er.deferred();
+      if (er.deferred()) {
+        // Points whose cavity is still growing give up this iteration (S5).
+        CavityTuple* pend = tuples.data() + er.pending_begin;
+        int* f = failed.data();
+        Ops::for_each(er.size - er.pending_begin, [=] GDR_HD(long long i) { f[pend[i].pt] = 1; });
+      }
+      tuples.resize(er.size);
+    }
+    clock.stop<Space>("cavity");
+
+    // Verify marks, then exact checks of each surviving cavity.
+    const std::size_t nt = tuples.size();
+    Ops::for_each(nt, VerifyClaims{dm.view(), cand.data(), tuples.data(), failed.data()});
+    Ops::for_each(nt, SetInCavity{dm.view(), cand.data(), tuples.data(), failed.data(), 1});
+    Ops::for_each(nt, CheckCavity{dm.view(), cand.data(), tuples.data(), failed.data()});
+    Ops::for_each(nt, SetInCavity{dm.view(), cand.data(), tuples.data(), failed.data(), 0});
+
+    // New vertex numbers (and the Steiner cap: drop the surplus winners, all independent).
+    point_id.resize_discard(ns);
+    {
+      const int* f = failed.data();
+      int* pid = point_id.data();
+      Ops::for_each(ns, [=] GDR_HD(long long j) { pid[j] = f[j] ? 0 : 1; });
+    }
+    long long won = Ops::exclusive_scan(point_id.data(), point_id.data(), ns);
+    if (params.max_steiner >= 0 && res.inserted + won > params.max_steiner) {
+      const int keep = static_cast<int>(params.max_steiner - res.inserted);
+      const int* pid = point_id.data();
+      int* f = failed.data();
+      Ops::for_each(ns, [=] GDR_HD(long long j) {
+        if (!f[j] && pid[j] >= keep) f[j] = 1;
+      });
+      Ops::for_each(nt, SetInCavity{dm.view(), cand.data(), tuples.data(), failed.data(), 0});
+      won = keep;
+      res.cap_reached = true;
+    }
+    clock.stop<Space>("verify");
+
+    if (won > 0) {
+      // Insert (Algorithm 1 line 8): fan each cavity from its point.
+      count.resize_discard(nt);
+      Ops::for_each(nt, CountFanEdges{dm.view(), cand.data(), tuples.data(), failed.data(), count.data()});
+      const int new_tris = static_cast<int>(Ops::exclusive_scan(count.data(), count.data(), nt));
+      Ops::for_each(nt, StoreSlotBase{dm.view(), tuples.data(), failed.data(), count.data()});
+      const int old_ntri = dm.ntri, old_npts = dm.npts;
+      dm.reserve(old_ntri + new_tris, old_npts + static_cast<int>(won));
+      dm.ntri = old_ntri + new_tris;
+      dm.npts = old_npts + static_cast<int>(won);
+      {
+        int* pid = point_id.data();
+        Ops::for_each(ns, [=] GDR_HD(long long j) { pid[j] += old_npts; });
+      }
+      const MeshView mv = dm.view();
+      Ops::for_each(nt, CreateFan{mv, cand.data(), tuples.data(), failed.data(), point_id.data(), old_ntri});
+      Ops::for_each(nt, LinkFan{mv, cand.data(), tuples.data(), failed.data(), old_ntri, error.data()});
+      Ops::for_each(nt, KillCavity{mv, tuples.data(), failed.data()});
+      Ops::for_each(ns, WritePoints{mv, cand.data(), failed.data(), point_id.data()});
+      if (error.get(0)) throw Error(Status::InternalError, "gDP2d: broken cavity while linking new triangles");
+      res.inserted += won;
+      clock.stop<Space>("insert");
+      // Compaction (S1): keeps the triangle arrays dense for the next collect.
+      detail::compact_triangles(dm);
+      clock.stop<Space>("compact");
+      idle_iterations = 0;
+    } else {
+      ++idle_iterations;
+      if (idle_iterations >= 3) {
+        res.stalled = true;
+        break;
+      }
+    }
+    if (cb.progress)
+      cb.progress(0.0, "iteration " + std::to_string(iter + 1) + ": " + std::to_string(nl) +
+                           " bad elements, " + std::to_string(won) + " points inserted");
+    if (res.cap_reached) break;
+  }
+
+  // Download the final mesh (live triangles only).
+  clock.restart();
+  detail::compact_triangles(dm);
+  host.xy = dm.xy.to_host();
+  host.xy.resize(2 * std::size_t(dm.npts));
+  host.ptype = dm.ptype.to_host();
+  host.ptype.resize(dm.npts);
+  host.pseg = dm.pseg.to_host();
+  host.pseg.resize(dm.npts);
+  host.tv = dm.tv.to_host();
+  host.tn = dm.tn.to_host();
+  host.ts = dm.ts.to_host();
+  clock.stop<Space>("download");
+  res.peak_bytes = exec::memory_counter<Space>().peak - mem_base;
+  return res;
+}
+
+}  // namespace gdr::r2d

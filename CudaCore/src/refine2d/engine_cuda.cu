@@ -1,0 +1,13 @@
+#include "exec/cuda.cuh"
+#include "refine2d/engine_dispatch.h"
+
+namespace gdr::r2d {
+
+EngineResult refine_mesh_cuda(HostMesh& mesh, const EngineParams& params, const Callbacks& cb) {
+  struct Trim {  // hand cached scratch memory back, also after an error
+    ~Trim() { exec::Ops<exec::Cuda>::trim(); }
+  } trim;
+  return refine_mesh<exec::Cuda>(mesh, params, cb);
+}
+
+}  // namespace gdr::r2d

@@ -1,0 +1,316 @@
+#include "refine2d/input.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <unordered_map>
+
+#include "predicates/predicates.h"
+
+namespace gdr::r2d {
+
+[[noreturn]] void invalid(const std::string& msg) { throw Error(Status::InvalidInput, msg); }
+
+std::string list_ints(const std::vector<long long>& v, std::size_t total) {
+  std::ostringstream s;
+  for (std::size_t i = 0; i < v.size(); ++i) s << (i ? ", " : "") << v[i];
+  if (total > v.size()) s << ", ... (" << total << " in all)";
+  return s.str();
+}
+
+namespace {
+
+struct PointHash {
+  std::size_t operator()(const std::pair<double, double>& p) const {
+    const std::size_t a = std::hash<double>()(p.first), b = std::hash<double>()(p.second);
+    return a ^ (b + 0x9e3779b97f4a7c15ull + (a << 6) + (a >> 2));
+  }
+};
+
+int sgn(double v) { return (v > 0) - (v < 0); }
+
+const double* xy(const std::vector<Point2>& p, int i) { return &p[i].x; }
+
+// Is c strictly between a and b, given that a, b, c are collinear?
+bool strictly_between(const Point2& a, const Point2& b, const Point2& c) {
+  if (a.x != b.x) return (a.x < c.x && c.x < b.x) || (b.x < c.x && c.x < a.x);
+  return (a.y < c.y && c.y < b.y) || (b.y < c.y && c.y < a.y);
+}
+
+bool conflict(const std::vector<Point2>& P, const std::array<int, 2>& s,
+              const std::array<int, 2>& t, SegmentConflict::Kind& kind) {
+  const int a = s[0], b = s[1], c = t[0], d = t[1];
+  const int o1 = sgn(pred::orient2d(xy(P, a), xy(P, b), xy(P, c)));
+  const int o2 = sgn(pred::orient2d(xy(P, a), xy(P, b), xy(P, d)));
+  if (o1 == 0 && o2 == 0) {  // collinear: overlap if the interiors share a point
+    const bool shared = a == c || a == d || b == c || b == d;
+    if (strictly_between(P[a], P[b], P[c]) || strictly_between(P[a], P[b], P[d]) ||
+        strictly_between(P[c], P[d], P[a]) || strictly_between(P[c], P[d], P[b]) ||
+        (shared && ((a == c && b == d) || (a == d && b == c)))) {
+      kind = SegmentConflict::Overlap;
+      return true;
+    }
+    return false;
+  }
+  const int o3 = sgn(pred::orient2d(xy(P, c), xy(P, d), xy(P, a)));
+  const int o4 = sgn(pred::orient2d(xy(P, c), xy(P, d), xy(P, b)));
+  if (o1 * o2 < 0 && o3 * o4 < 0) {
+    kind = SegmentConflict::Cross;
+    return true;
+  }
+  kind = SegmentConflict::Touch;
+  if (o1 == 0 && c != a && c != b && strictly_between(P[a], P[b], P[c])) return true;
+  if (o2 == 0 && d != a && d != b && strictly_between(P[a], P[b], P[d])) return true;
+  if (o3 == 0 && a != c && a != d && strictly_between(P[c], P[d], P[a])) return true;
+  if (o4 == 0 && b != c && b != d && strictly_between(P[c], P[d], P[b])) return true;
+  return false;
+}
+
+// Splits segments at the conflicts found: crossings at their (rounded) intersection point,
+// touching vertices and overlap ends at the vertex. Returns false if nothing changed.
+bool split_conflicts(CleanPslg& g, const std::vector<SegmentConflict>& conflicts) {
+  std::vector<std::vector<int>> cuts(g.segments.size());
+  auto add_cut_if_inside = [&](int s, int v) {
+    const auto& sg = g.segments[s];
+    if (v == sg[0] || v == sg[1]) return;
+    if (pred::orient2d(xy(g.points, sg[0]), xy(g.points, sg[1]), xy(g.points, v)) == 0 &&
+        strictly_between(g.points[sg[0]], g.points[sg[1]], g.points[v]))
+      cuts[s].push_back(v);
+  };
+  for (const auto& c : conflicts) {
+    const auto s = g.segments[c.s], t = g.segments[c.t];
+    if (c.kind == SegmentConflict::Cross) {
+      const Point2 &a = g.points[s[0]], &b = g.points[s[1]], &p = g.points[t[0]], &q = g.points[t[1]];
+      const double den = (b.x - a.x) * (q.y - p.y) - (b.y - a.y) * (q.x - p.x);
+      const double u = ((p.x - a.x) * (q.y - p.y) - (p.y - a.y) * (q.x - p.x)) / den;
+      g.points.push_back(Point2{a.x + u * (b.x - a.x), a.y + u * (b.y - a.y)});
+      const int v = static_cast<int>(g.points.size()) - 1;
+      cuts[c.s].push_back(v);
+      cuts[c.t].push_back(v);
+    } else {
+      for (int v : {t[0], t[1]}) add_cut_if_inside(c.s, v);
+      for (int v : {s[0], s[1]}) add_cut_if_inside(c.t, v);
+    }
+  }
+  bool changed = false;
+  std::vector<std::array<int, 2>> segs;
+  std::vector<int> origin;
+  for (std::size_t s = 0; s < g.segments.size(); ++s) {
+    auto& cut = cuts[s];
+    const Point2 a = g.points[g.segments[s][0]], b = g.points[g.segments[s][1]];
+    auto param = [&](int v) {
+      return (g.points[v].x - a.x) * (b.x - a.x) + (g.points[v].y - a.y) * (b.y - a.y);
+    };
+    std::sort(cut.begin(), cut.end(), [&](int u, int v) { return param(u) < param(v); });
+    cut.erase(std::unique(cut.begin(), cut.end()), cut.end());
+    int prev = g.segments[s][0];
+    for (int v : cut) {
+      if (v != prev) {
+        segs.push_back({prev, v});
+        origin.push_back(g.segment_origin[s]);
+      }
+      prev = v;
+      changed = true;
+    }
+    if (prev != g.segments[s][1]) {
+      segs.push_back({prev, g.segments[s][1]});
+      origin.push_back(g.segment_origin[s]);
+    }
+  }
+  g.segments.swap(segs);
+  g.segment_origin.swap(origin);
+  return changed;
+}
+
+void dedupe_segments(CleanPslg& g, const Callbacks& cb) {
+  std::unordered_map<long long, int> seen;
+  std::vector<std::array<int, 2>> segs;
+  std::vector<int> origin;
+  long long dropped = 0;
+  for (std::size_t s = 0; s < g.segments.size(); ++s) {
+    const int a = std::min(g.segments[s][0], g.segments[s][1]);
+    const int b = std::max(g.segments[s][0], g.segments[s][1]);
+    if (!seen.emplace((static_cast<long long>(a) << 32) | b, 1).second) {
+      ++dropped;
+      continue;
+    }
+    segs.push_back(g.segments[s]);
+    origin.push_back(g.segment_origin[s]);
+  }
+  if (dropped && cb.warning)
+    cb.warning(std::to_string(dropped) + " duplicate segment(s) ignored");
+  g.segments.swap(segs);
+  g.segment_origin.swap(origin);
+}
+
+}  // namespace
+
+std::vector<SegmentConflict> find_segment_conflicts(const std::vector<Point2>& P,
+                                                    const std::vector<std::array<int, 2>>& S,
+                                                    std::size_t limit) {
+  std::vector<SegmentConflict> found;
+  if (S.size() < 2) return found;
+  double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+  for (const auto& s : S)
+    for (int v : s) {
+      x0 = std::min(x0, P[v].x), x1 = std::max(x1, P[v].x);
+      y0 = std::min(y0, P[v].y), y1 = std::max(y1, P[v].y);
+    }
+  // Uniform grid with about one segment per cell; each segment goes into the cells its
+  // bounding box covers, and pairs are tested exactly within each cell.
+  const int g = std::clamp(static_cast<int>(std::sqrt(static_cast<double>(S.size()))), 1, 2048);
+  const double w = std::max(x1 - x0, y1 - y0);
+  const double h = w > 0 ? w / g : 1.0;
+  auto cell = [&](double v, double o) {
+    return std::clamp(static_cast<int>((v - o) / h), 0, g - 1);
+  };
+  std::vector<std::vector<int>> cells(static_cast<std::size_t>(g) * g);
+  for (std::size_t i = 0; i < S.size(); ++i) {
+    const Point2 &a = P[S[i][0]], &b = P[S[i][1]];
+    const int cx0 = cell(std::min(a.x, b.x), x0), cx1 = cell(std::max(a.x, b.x), x0);
+    const int cy0 = cell(std::min(a.y, b.y), y0), cy1 = cell(std::max(a.y, b.y), y0);
+    for (int cy = cy0; cy <= cy1; ++cy)
+      for (int cx = cx0; cx <= cx1; ++cx) cells[static_cast<std::size_t>(cy) * g + cx].push_back(int(i));
+  }
+  const long long ncell = static_cast<long long>(cells.size());
+#pragma omp parallel
+  {
+    std::vector<SegmentConflict> local;
+#pragma omp for schedule(dynamic, 64)
+    for (long long c = 0; c < ncell; ++c) {
+      const auto& list = cells[c];
+      for (std::size_t i = 0; i < list.size() && local.size() < limit; ++i)
+        for (std::size_t j = i + 1; j < list.size(); ++j) {
+          SegmentConflict::Kind kind;
+          if (conflict(P, S[list[i]], S[list[j]], kind))
+            local.push_back({std::min(list[i], list[j]), std::max(list[i], list[j]), kind});
+        }
+    }
+#pragma omp critical
+    found.insert(found.end(), local.begin(), local.end());
+  }
+  std::sort(found.begin(), found.end(), [](const SegmentConflict& a, const SegmentConflict& b) {
+    return a.s != b.s ? a.s < b.s : a.t < b.t;
+  });
+  found.erase(std::unique(found.begin(), found.end(),
+                          [](const SegmentConflict& a, const SegmentConflict& b) {
+                            return a.s == b.s && a.t == b.t;
+                          }),
+              found.end());
+  if (found.size() > limit) found.resize(limit);
+  return found;
+}
+
+}  // namespace gdr::r2d
+
+namespace gdr {
+using r2d::invalid;
+using r2d::list_ints;
+
+void validate_refine2d_input(const Pslg& in, const Refine2dOptions& o) {
+  if (!(o.min_angle >= 0) || o.min_angle > 34.0)
+    invalid("minimum angle " + std::to_string(o.min_angle) +
+            " is out of range [0, 34] degrees: above about 34 degrees Delaunay refinement "
+            "cannot be guaranteed to terminate");
+  if (!(o.max_edge_length >= 0) || !std::isfinite(o.max_edge_length))
+    invalid("maximum edge length must be a finite number >= 0 (0 = off)");
+  if (!(o.max_area >= 0) || !std::isfinite(o.max_area))
+    invalid("maximum area must be a finite number >= 0 (0 = off)");
+  if (o.max_steiner_points < -1) invalid("maximum Steiner points must be -1 (unlimited) or >= 0");
+  if (in.points.empty()) invalid("the input has no points");
+  std::vector<long long> bad;
+  std::size_t nbad = 0;
+  for (std::size_t i = 0; i < in.points.size(); ++i)
+    if (!std::isfinite(in.points[i].x) || !std::isfinite(in.points[i].y)) {
+      if (bad.size() < 10) bad.push_back(static_cast<long long>(i));
+      ++nbad;
+    }
+  if (nbad) invalid("points with NaN or infinite coordinates: " + list_ints(bad, nbad));
+  bad.clear();
+  nbad = 0;
+  const long long np = static_cast<long long>(in.points.size());
+  for (std::size_t s = 0; s < in.segments.size(); ++s) {
+    const auto& sg = in.segments[s];
+    if (sg[0] < 0 || sg[1] < 0 || sg[0] >= np || sg[1] >= np) {
+      if (bad.size() < 10) bad.push_back(static_cast<long long>(s));
+      ++nbad;
+    }
+  }
+  if (nbad)
+    invalid("segments referencing missing points (there are " + std::to_string(np) +
+            " points): segment " + list_ints(bad, nbad));
+  for (std::size_t s = 0; s < in.segments.size(); ++s) {
+    const auto& sg = in.segments[s];
+    const Point2 &a = in.points[sg[0]], &b = in.points[sg[1]];
+    if (sg[0] == sg[1] || (a.x == b.x && a.y == b.y))
+      invalid("segment " + std::to_string(s) + " has zero length (points " +
+              std::to_string(sg[0]) + " and " + std::to_string(sg[1]) + " coincide)");
+  }
+  for (std::size_t h = 0; h < in.holes.size(); ++h)
+    if (!std::isfinite(in.holes[h].x) || !std::isfinite(in.holes[h].y))
+      invalid("hole " + std::to_string(h) + " has NaN or infinite coordinates");
+  // Three non-collinear points are needed for any triangle.
+  std::size_t i1 = 0;
+  while (i1 < in.points.size() && in.points[i1].x == in.points[0].x &&
+         in.points[i1].y == in.points[0].y)
+    ++i1;
+  bool area = false;
+  for (std::size_t i = i1 + 1; i1 < in.points.size() && i < in.points.size() && !area; ++i)
+    area = pred::orient2d(&in.points[0].x, &in.points[i1].x, &in.points[i].x) != 0;
+  if (!area) invalid("the input needs at least three points that are not collinear");
+}
+
+}  // namespace gdr
+
+namespace gdr::r2d {
+
+CleanPslg clean_input(const Pslg& in, const Refine2dOptions& o, const Callbacks& cb) {
+  validate_refine2d_input(in, o);
+  CleanPslg g;
+  g.holes = in.holes;
+  std::vector<int> remap(in.points.size());
+  std::unordered_map<std::pair<double, double>, int, PointHash> index;
+  index.reserve(in.points.size() * 2);
+  for (std::size_t i = 0; i < in.points.size(); ++i) {
+    const auto key = std::make_pair(in.points[i].x + 0.0, in.points[i].y + 0.0);  // -0 == 0
+    auto it = index.emplace(key, static_cast<int>(g.points.size()));
+    if (it.second) g.points.push_back(in.points[i]);
+    else ++g.duplicates_merged;
+    remap[i] = it.first->second;
+  }
+  if (g.duplicates_merged && cb.warning)
+    cb.warning(std::to_string(g.duplicates_merged) + " duplicate point(s) merged");
+  for (std::size_t s = 0; s < in.segments.size(); ++s) {
+    g.segments.push_back({remap[in.segments[s][0]], remap[in.segments[s][1]]});
+    g.segment_origin.push_back(static_cast<int>(s));
+  }
+  dedupe_segments(g, cb);
+
+  const std::size_t limit = 10;
+  for (int round = 0;; ++round) {
+    const auto conflicts =
+        find_segment_conflicts(g.points, g.segments, o.split_intersections ? 1u << 20 : limit);
+    if (conflicts.empty()) break;
+    if (!o.split_intersections || round == 8) {
+      std::ostringstream msg;
+      msg << "segments intersect other than at shared endpoints (first pairs, as input segment"
+             " index: points):";
+      for (const auto& c : conflicts) {
+        const char* what = c.kind == SegmentConflict::Cross   ? "cross"
+                           : c.kind == SegmentConflict::Touch ? "touch"
+                                                              : "overlap";
+        const auto &s = g.segments[c.s], &t = g.segments[c.t];
+        msg << " segment " << g.segment_origin[c.s] << " (" << s[0] << "-" << s[1] << ") and "
+            << g.segment_origin[c.t] << " (" << t[0] << "-" << t[1] << ") " << what << ";";
+      }
+      msg << (o.split_intersections ? " (could not be split)"
+                                    : " use the split-intersections option to split them");
+      throw Error(Status::SelfIntersectingInput, msg.str());
+    }
+    split_conflicts(g, conflicts);
+    dedupe_segments(g, cb);
+  }
+  return g;
+}
+
+}  // namespace gdr::r2d

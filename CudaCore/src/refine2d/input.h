@@ -1,0 +1,40 @@
+// Input checking and clean-up for the 2D mesher, and the initial CDT (paper Algorithm 1
+// line 1, on the CPU).
+#pragma once
+#include <string>
+#include <vector>
+
+#include "gdr/progress.h"
+#include "gdr/refine2d.h"
+#include "refine2d/mesh2d.h"
+
+namespace gdr::r2d {
+
+// The PSLG the mesher works on: duplicates merged, segments deduplicated and (optionally)
+// split at intersections. Points keep the input order (first occurrences), then any
+// intersection points.
+struct CleanPslg {
+  std::vector<Point2> points;
+  std::vector<std::array<int, 2>> segments;
+  std::vector<int> segment_origin;  // input segment each cleaned segment comes from
+  std::vector<Point2> holes;
+  long long duplicates_merged = 0;
+};
+
+// Throws InvalidInput / SelfIntersectingInput naming the offending items.
+CleanPslg clean_input(const Pslg& input, const Refine2dOptions& options, const Callbacks& cb);
+
+// Constrained Delaunay triangulation of the cleaned PSLG. Convex-hull edges that are not
+// segments become extra segments (as Triangle does), unless the exterior is removed.
+HostMesh initial_cdt(const CleanPslg& pslg, bool remove_exterior);
+
+// Pairs of segments that cross, touch or overlap (exact predicates), at most `limit`.
+struct SegmentConflict {
+  int s, t;
+  enum Kind { Cross, Touch, Overlap } kind;
+};
+std::vector<SegmentConflict> find_segment_conflicts(const std::vector<Point2>& points,
+                                                    const std::vector<std::array<int, 2>>& segs,
+                                                    std::size_t limit);
+
+}  // namespace gdr::r2d

@@ -1,0 +1,574 @@
+// The per-element work of gDP2d, written once as host+device functors. Each phase of
+// engine.h launches one of these over its work list on the CPU (OpenMP) or the GPU (CUDA).
+#pragma once
+#include <cmath>
+
+#include "exec/hd.h"
+#include "exec/priority.h"
+#include "predicates/predicates.h"
+#include "refine2d/mesh2d.h"
+
+namespace gdr::r2d {
+
+using exec::u64;
+
+GDR_HD_INLINE int next3(int i) { return i == 2 ? 0 : i + 1; }
+GDR_HD_INLINE int prev3(int i) { return i == 0 ? 2 : i - 1; }
+
+// Quality criteria, in forms that avoid square roots and trigonometry in kernels.
+struct Criteria {
+  double sin2_min_angle = 0;  // sin^2(theta); 0 disables the angle test
+  double max_edge2 = 0;       // squared edge bound; 0 = off
+  double max_area2 = 0;       // twice the area bound (compared with |cross|); 0 = off
+  double offcenter_h = 0;     // off-centres: distance factor sqrt(beta^2 - 1/4); 0 = circumcentres
+  int chew = 0;               // 1: diametral lens encroachment, 0: diametral circle
+  int step_limit = 4096;      // point-location walk bound (deferred beyond it)
+};
+
+GDR_HD_INLINE const double* pt(const MeshView& m, int v) { return m.xy + 2 * v; }
+
+GDR_HD_INLINE double dist2(const double* a, const double* b) {
+  const double dx = a[0] - b[0], dy = a[1] - b[1];
+  return dx * dx + dy * dy;
+}
+
+// Does p encroach the subsegment ab? Ruppert: strictly inside the diametral circle (exact).
+// Chew: inside the diametral lens, i.e. the angle apb exceeds 120 degrees.
+GDR_HD_INLINE bool encroaches(const double* a, const double* b, const double* p, int chew) {
+  if (pred::in_diametral_circle(a, b, p) <= 0) return false;
+  if (!chew) return true;
+  const double ax = a[0] - p[0], ay = a[1] - p[1], bx = b[0] - p[0], by = b[1] - p[1];
+  const double dot = ax * bx + ay * by;  // negative here
+  return 4.0 * dot * dot > (ax * ax + ay * ay) * (bx * bx + by * by);
+}
+
+// Classification of a triangle against the criteria.
+enum : int { kGood = 0, kBad = 1, kBadProtected = 2 };
+
+// A triangle whose shortest edge joins two segment points lying on different segments
+// that share an input vertex, at (nearly) equal distances from it, sits in a small input
+// angle: splitting it only cuts the angle again (Ruppert/Shewchuk). It is left bad and
+// reported instead. The tolerance is on a quality heuristic, not on topology.
+GDR_HD_INLINE bool in_small_angle(const MeshView& m, int p, int q) {
+  if (m.ptype[p] != kSegmentPoint || m.ptype[q] != kSegmentPoint) return false;
+  const int sp = m.pseg[p], sq = m.pseg[q];
+  if (sp == sq || sp < 0 || sq < 0) return false;
+  const int p0 = m.seg[2 * sp], p1 = m.seg[2 * sp + 1];
+  const int q0 = m.seg[2 * sq], q1 = m.seg[2 * sq + 1];
+  int apex = -1;
+  if (p0 == q0 || p0 == q1) apex = p0;
+  else if (p1 == q0 || p1 == q1) apex = p1;
+  if (apex < 0) return false;
+  const double dp = sqrt(dist2(pt(m, apex), pt(m, p)));
+  const double dq = sqrt(dist2(pt(m, apex), pt(m, q)));
+  return fabs(dp - dq) <= 1e-3 * (dp > dq ? dp : dq);
+}
+
+GDR_HD_INLINE int classify_triangle(const MeshView& m, int t, const Criteria& c) {
+  const int v0 = m.tv[3 * t], v1 = m.tv[3 * t + 1], v2 = m.tv[3 * t + 2];
+  const double* a = pt(m, v0);
+  const double* b = pt(m, v1);
+  const double* d = pt(m, v2);
+  const double l0 = dist2(b, d), l1 = dist2(d, a), l2 = dist2(a, b);  // edge i opposite vertex i
+  const double cross = (b[0] - a[0]) * (d[1] - a[1]) - (b[1] - a[1]) * (d[0] - a[0]);
+  const double lmax = fmax(l0, fmax(l1, l2));
+  if (c.max_edge2 > 0 && lmax > c.max_edge2) return kBad;
+  if (c.max_area2 > 0 && fabs(cross) > c.max_area2) return kBad;
+  if (c.sin2_min_angle <= 0) return kGood;
+  // min angle < theta  <=>  sin^2(theta) * (product of the two longer squared edges) > cross^2
+  int s = 0;
+  double lmin = l0;
+  if (l1 < lmin) { lmin = l1; s = 1; }
+  if (l2 < lmin) { lmin = l2; s = 2; }
+  const double others = (l0 * l1 * l2) / lmin;
+  if (!(c.sin2_min_angle * others > cross * cross)) return kGood;
+  const int p = m.tv[3 * t + next3(s)], q = m.tv[3 * t + prev3(s)];
+  return in_small_angle(m, p, q) ? kBadProtected : kBad;
+}
+
+// Circumcentre (or Ungor off-centre) of triangle t, and its squared circumradius.
+GDR_HD_INLINE void splitting_point(const MeshView& m, int t, const Criteria& c, double* out,
+                                   double* r2) {
+  const double* a = pt(m, m.tv[3 * t]);
+  const double* b = pt(m, m.tv[3 * t + 1]);
+  const double* d = pt(m, m.tv[3 * t + 2]);
+  const double bx = b[0] - a[0], by = b[1] - a[1], dx = d[0] - a[0], dy = d[1] - a[1];
+  const double bl = bx * bx + by * by, dl = dx * dx + dy * dy;
+  const double den = 2.0 * (bx * dy - by * dx);
+  const double ux = (dy * bl - by * dl) / den, uy = (bx * dl - dx * bl) / den;
+  *r2 = ux * ux + uy * uy;
+  out[0] = a[0] + ux;
+  out[1] = a[1] + uy;
+  if (c.offcenter_h <= 0) return;
+  // Off-centre: on the bisector of the shortest edge pq, at distance |pq|*h from its
+  // midpoint, when that is closer than the circumcentre (new triangle pq-o then meets theta).
+  const double l0 = dist2(b, d), l1 = dist2(d, a), l2 = dist2(a, b);
+  const double* p = b;
+  const double* q = d;
+  double lmin = l0;
+  if (l1 < lmin) { lmin = l1; p = d; q = a; }
+  if (l2 < lmin) { lmin = l2; p = a; q = b; }
+  const double mx = 0.5 * (p[0] + q[0]), my = 0.5 * (p[1] + q[1]);
+  const double cx = out[0] - mx, cy = out[1] - my;
+  const double cl = sqrt(cx * cx + cy * cy);
+  const double h = sqrt(lmin) * c.offcenter_h;
+  if (cl > h && cl > 0) {
+    out[0] = mx + cx * (h / cl);
+    out[1] = my + cy * (h / cl);
+  }
+}
+
+// Splitting point of subsegment ab. Concentric shells (Ruppert, Shewchuk): when exactly one
+// endpoint is an input vertex, split at a power-of-two distance from it, so that segments
+// meeting at a small angle are cut at matching radii and do not encroach each other forever.
+GDR_HD_INLINE void segment_split_point(const MeshView& m, int va, int vb, double* out) {
+  const double* a = pt(m, va);
+  const double* b = pt(m, vb);
+  const bool ia = m.ptype[va] == kInputPoint, ib = m.ptype[vb] == kInputPoint;
+  double f = 0.5;
+  if (ia != ib) {
+    const double len = sqrt(dist2(a, b));
+    const double d = exp2(floor(log2(0.5 * len) + 0.5));  // nearest power of two to len/2
+    f = d / len;
+    if (!(f > 0.25 && f < 0.75)) f = 0.5;
+    if (ib) f = 1.0 - f;
+  }
+  out[0] = a[0] + f * (b[0] - a[0]);
+  out[1] = a[1] + f * (b[1] - a[1]);
+  if (f == 0.5) {  // the exact midpoint where representable, symmetric in a and b
+    out[0] = 0.5 * (a[0] + b[0]);
+    out[1] = 0.5 * (a[1] + b[1]);
+  }
+}
+
+// ---------------------------------------------------------------------------------------
+// Collect (Algorithm 1 line 3, S4): one flag per (triangle, slot); slots 0-2 are the
+// triangle's edges as subsegments, slot 3 the triangle itself.
+struct CollectElements {
+  MeshView m;
+  Criteria c;
+  GDR_HD bool operator()(long long e) const {
+    const int t = static_cast<int>(e >> 2), k = static_cast<int>(e & 3);
+    if (m.tflag[t] & kDead) return false;
+    if (k == 3) return classify_triangle(m, t, c) == kBad;
+    if (m.ts[3 * t + k] < 0) return false;
+    if (m.tflag[t] & (kSplitEdge0 << k)) return true;
+    const int a = m.tv[3 * t + next3(k)], b = m.tv[3 * t + prev3(k)], apex = m.tv[3 * t + k];
+    return encroaches(pt(m, a), pt(m, b), pt(m, apex), c.chew);
+  }
+};
+
+// A splitting point and its claim (the paper's S): kind 0 splits subsegment (et, ek),
+// kind 1 is a free point (circumcentre) located in triangle `start`.
+struct Candidate {
+  double x, y;
+  u64 prio;
+  int start;    // triangle it lies in (the canonical side for subsegments)
+  int et, ek;   // subsegment being split (kind 0)
+  int kind;     // -1: dropped this iteration
+};
+
+enum : unsigned { kClassTriangle = 1, kClassWalkSegment = 2, kClassEncroached = 3 };
+
+GDR_HD_INLINE void make_segment_candidate(const MeshView& m, int t, int k, unsigned klass,
+                                          unsigned id, Candidate& out) {
+  const int a = m.tv[3 * t + next3(k)], b = m.tv[3 * t + prev3(k)];
+  double p[2];
+  segment_split_point(m, a, b, p);
+  const int nb = m.tn[3 * t + k];
+  // The canonical side: both triangles may report the same subsegment.
+  if (nb >= 0 && nb / 3 < t) {
+    t = nb / 3;
+    k = nb % 3;
+  }
+  out.x = p[0];
+  out.y = p[1];
+  out.et = t;
+  out.ek = k;
+  out.start = t;
+  out.kind = 0;
+  out.prio = exec::make_priority(klass, static_cast<float>(dist2(pt(m, a), pt(m, b))), id);
+  // A split point that rounds onto an endpoint would duplicate it: leave that subsegment.
+  if ((p[0] == pt(m, a)[0] && p[1] == pt(m, a)[1]) || (p[0] == pt(m, b)[0] && p[1] == pt(m, b)[1]))
+    out.kind = -1;
+}
+
+// Splitting points and point location (Algorithm 1 lines 5-6). A walk towards a
+// circumcentre that meets a subsegment takes that subsegment's split point instead.
+struct ComputeSplittingPoints {
+  MeshView m;
+  Criteria c;
+  const int* list;
+  Candidate* out;
+  GDR_HD void operator()(long long j) const {
+    const int e = list[j];
+    const int t = e >> 2, k = e & 3;
+    Candidate& cand = out[j];
+    if (k < 3) {
+      make_segment_candidate(m, t, k, kClassEncroached, static_cast<unsigned>(j), cand);
+      return;
+    }
+    double p[2], r2;
+    splitting_point(m, t, c, p, &r2);
+    cand.x = p[0];
+    cand.y = p[1];
+    cand.kind = -1;
+    if (!(r2 < 1e300) || p[0] != p[0] || p[1] != p[1]) return;  // degenerate triangle
+    int u = t;
+    for (int step = 0; step < c.step_limit; ++step) {
+      int exit = -1;
+      for (int i0 = 0; i0 < 3; ++i0) {
+        const int i = (i0 + step) % 3;  // rotate the first edge tried: no cycling
+        const double* a = pt(m, m.tv[3 * u + next3(i)]);
+        const double* b = pt(m, m.tv[3 * u + prev3(i)]);
+        if (pred::orient2d(a, b, p) < 0) {
+          exit = i;
+          break;
+        }
+      }
+      if (exit < 0) {  // p is in u (or on its boundary)
+        cand.kind = 1;
+        cand.start = u;
+        cand.et = cand.ek = -1;
+        cand.prio = exec::make_priority(kClassTriangle, static_cast<float>(r2),
+                                        static_cast<unsigned>(j));
+        return;
+      }
+      if (m.ts[3 * u + exit] >= 0 || m.tn[3 * u + exit] < 0) {
+        if (m.ts[3 * u + exit] < 0) return;  // outside an unconstrained boundary: cannot happen
+        exec::atomic_or(&m.tflag[u], kSplitEdge0 << exit);
+        make_segment_candidate(m, u, exit, kClassWalkSegment, static_cast<unsigned>(j), cand);
+        return;
+      }
+      u = m.tn[3 * u + exit] / 3;
+    }
+  }
+};
+
+// Filter (S3): one splitting point per triangle, by atomic priority marks.
+struct ClaimStart {
+  MeshView m;
+  const Candidate* cand;
+  GDR_HD void operator()(long long j) const {
+    if (cand[j].kind >= 0) exec::atomic_max(&m.mark[cand[j].start], cand[j].prio);
+  }
+};
+
+// ---------------------------------------------------------------------------------------
+// Cavity growth by ExpandList (Algorithm 4, S2): one tuple = (point, triangle).
+enum : int {
+  kTupleNew = 0,
+  kTupleCavity = 1,  // first claim of a triangle in the point's cavity
+  kTupleRing = 2,    // first claim of a triangle just outside it
+  kTupleDup = 3,     // already claimed by the same point
+  kTupleLost = 4,
+  kTupleStale = 5,
+};
+enum : int { kForceIn = 1, kForceOut = 2 };
+
+struct CavityTuple {
+  int pt;     // index into the candidate list
+  int tri;
+  int state;  // kTuple*; on input: kForce* bits
+};
+
+GDR_HD_INLINE bool is_split_edge(const MeshView& m, const Candidate& c, int t, int e) {
+  if (c.kind != 0) return false;
+  if (t == c.et && e == c.ek) return true;
+  return m.tn[3 * c.et + c.ek] == 3 * t + e;
+}
+
+struct GrowCavity {
+  MeshView m;
+  const Candidate* cand;
+  int* failed;
+  int chew;
+  GDR_HD int operator()(long long, CavityTuple& h, CavityTuple* out) const {
+    const Candidate& c = cand[h.pt];
+    if (exec::volatile_load(&failed[h.pt])) {
+      h.state = kTupleStale;
+      return 0;
+    }
+    const int t = h.tri;
+    const double p[2] = {c.x, c.y};
+    bool in;
+    if (h.state & kForceIn) in = true;
+    else if (h.state & kForceOut) in = false;
+    else
+      in = pred::incircle(pt(m, m.tv[3 * t]), pt(m, m.tv[3 * t + 1]), pt(m, m.tv[3 * t + 2]), p) > 0;
+    if (!in) {
+      // Ring: the triangle stays, only its link to the cavity changes. Rings may be shared
+      // by several points, but not with another point's cavity (checked in VerifyClaims).
+      const u64 old = exec::atomic_max(&m.rmark[t], c.prio);
+      h.state = old == c.prio ? kTupleDup : kTupleRing;
+      return 0;
+    }
+    const int r = exec::claim(&m.mark[t], c.prio);
+    if (r < 0) {
+      failed[h.pt] = 1;
+      h.state = kTupleLost;
+      return 0;
+    }
+    if (r == 0) {
+      h.state = kTupleDup;
+      return 0;
+    }
+    h.state = kTupleCavity;
+    int n = 0;
+    for (int e = 0; e < 3; ++e) {
+      const int nb = m.tn[3 * t + e];
+      if (is_split_edge(m, c, t, e)) {
+        if (nb >= 0) out[n++] = CavityTuple{h.pt, nb / 3, kForceIn};
+        continue;
+      }
+      if (m.ts[3 * t + e] >= 0) {
+        // Ruppert: a free point that would encroach a subsegment is not inserted; the
+        // subsegment is split first (flagged for the next iteration).
+        if (c.kind == 1 && encroaches(pt(m, m.tv[3 * t + next3(e)]), pt(m, m.tv[3 * t + prev3(e)]),
+                                      p, chew)) {
+          exec::atomic_or(&m.tflag[t], kSplitEdge0 << e);
+          failed[h.pt] = 1;
+          return n;
+        }
+        if (nb >= 0) out[n++] = CavityTuple{h.pt, nb / 3, kForceOut};  // keep it untouched
+        continue;
+      }
+      if (nb >= 0) out[n++] = CavityTuple{h.pt, nb / 3, 0};
+    }
+    return n;
+  }
+};
+
+// Marks that did not survive mean a higher-priority point overlaps: drop this one.
+struct VerifyClaims {
+  MeshView m;
+  const Candidate* cand;
+  const CavityTuple* tuples;
+  int* failed;
+  GDR_HD void operator()(long long i) const {
+    const CavityTuple& h = tuples[i];
+    const u64 p = cand[h.pt].prio;
+    // A cavity triangle must be ours alone and not in a higher point's ring (adjacent
+    // cavities are Delaunay dependent); a ring triangle must not be in a higher cavity.
+    if (h.state == kTupleCavity && (m.mark[h.tri] != p || m.rmark[h.tri] > p)) failed[h.pt] = 1;
+    if (h.state == kTupleRing && m.mark[h.tri] > p) failed[h.pt] = 1;
+  }
+};
+
+struct SetInCavity {
+  MeshView m;
+  const Candidate* cand;
+  const CavityTuple* tuples;
+  const int* failed;
+  int value;  // 1: set, 0: clear (for points dropped after marking)
+  GDR_HD void operator()(long long i) const {
+    const CavityTuple& h = tuples[i];
+    if (h.state != kTupleCavity) return;
+    if (value && !failed[h.pt]) m.tflag[h.tri] |= kInCavity;
+    // Only the owner of the mark may clear: a failed point's tuple can name a triangle that
+    // a winner took over.
+    if (!value && failed[h.pt] && m.mark[h.tri] == cand[h.pt].prio) m.tflag[h.tri] &= ~kInCavity;
+  }
+};
+
+// Edge e of cavity triangle t: 0 interior to the cavity, 1 boundary edge that gets a new
+// triangle (fan from the point), 2 the split subsegment on the domain boundary (no triangle).
+enum : int { kEdgeInterior = 0, kEdgeFan = 1, kEdgeHullSplit = 2 };
+
+GDR_HD_INLINE int cavity_edge(const MeshView& m, const Candidate& c, int t, int e) {
+  const int nb = m.tn[3 * t + e];
+  if (is_split_edge(m, c, t, e)) return nb < 0 ? kEdgeHullSplit : kEdgeInterior;
+  if (nb >= 0 && (m.tflag[nb / 3] & kInCavity) && m.mark[nb / 3] == c.prio) return kEdgeInterior;
+  return kEdgeFan;
+}
+
+// Last exact checks before anything is written: the fan must be made of positively oriented
+// triangles, and no other subsegment may lie inside the cavity.
+struct CheckCavity {
+  MeshView m;
+  const Candidate* cand;
+  const CavityTuple* tuples;
+  int* failed;
+  GDR_HD void operator()(long long i) const {
+    const CavityTuple& h = tuples[i];
+    if (h.state != kTupleCavity || failed[h.pt]) return;
+    const Candidate& c = cand[h.pt];
+    const double p[2] = {c.x, c.y};
+    const int t = h.tri;
+    for (int e = 0; e < 3; ++e) {
+      const int k = cavity_edge(m, c, t, e);
+      if (k == kEdgeInterior) {
+        if (m.ts[3 * t + e] >= 0 && !is_split_edge(m, c, t, e)) failed[h.pt] = 1;
+      } else if (k == kEdgeFan) {
+        if (pred::orient2d(pt(m, m.tv[3 * t + next3(e)]), pt(m, m.tv[3 * t + prev3(e)]), p) <= 0)
+          failed[h.pt] = 1;
+      }
+    }
+  }
+};
+
+struct CountFanEdges {
+  MeshView m;
+  const Candidate* cand;
+  const CavityTuple* tuples;
+  const int* failed;
+  int* count;
+  GDR_HD void operator()(long long i) const {
+    const CavityTuple& h = tuples[i];
+    int n = 0;
+    if (h.state == kTupleCavity && !failed[h.pt])
+      for (int e = 0; e < 3; ++e) n += cavity_edge(m, cand[h.pt], h.tri, e) == kEdgeFan;
+    count[i] = n;
+  }
+};
+
+struct StoreSlotBase {
+  MeshView m;
+  const CavityTuple* tuples;
+  const int* failed;
+  const int* base;
+  GDR_HD void operator()(long long i) const {
+    const CavityTuple& h = tuples[i];
+    if (h.state == kTupleCavity && !failed[h.pt]) m.aux[h.tri] = base[i];
+  }
+};
+
+GDR_HD_INLINE int fan_rank(const MeshView& m, const Candidate& c, int t, int e) {
+  int r = 0;
+  for (int i = 0; i < e; ++i) r += cavity_edge(m, c, t, i) == kEdgeFan;
+  return r;
+}
+
+// Remesh the cavity: one new triangle (x, y, p) per fan edge (x, y), linked to the
+// triangle outside the cavity; the links between fan triangles come in LinkFan.
+struct CreateFan {
+  MeshView m;
+  const Candidate* cand;
+  const CavityTuple* tuples;
+  const int* failed;
+  const int* point_id;  // new vertex index of each candidate
+  int old_ntri;
+  GDR_HD void operator()(long long i) const {
+    const CavityTuple& h = tuples[i];
+    if (h.state != kTupleCavity || failed[h.pt]) return;
+    const Candidate& c = cand[h.pt];
+    const int t = h.tri, p = point_id[h.pt];
+    int split_a = -1, split_b = -1, split_seg = -1;
+    if (c.kind == 0) {
+      split_a = m.tv[3 * c.et + next3(c.ek)];
+      split_b = m.tv[3 * c.et + prev3(c.ek)];
+      split_seg = m.ts[3 * c.et + c.ek];
+    }
+    int r = 0;
+    for (int e = 0; e < 3; ++e) {
+      if (cavity_edge(m, c, t, e) != kEdgeFan) continue;
+      const int nt = old_ntri + m.aux[t] + r++;
+      const int x = m.tv[3 * t + next3(e)], y = m.tv[3 * t + prev3(e)];
+      m.tv[3 * nt] = x;
+      m.tv[3 * nt + 1] = y;
+      m.tv[3 * nt + 2] = p;
+      m.ts[3 * nt + 2] = m.ts[3 * t + e];
+      m.ts[3 * nt] = (y == split_a || y == split_b) ? split_seg : -1;
+      m.ts[3 * nt + 1] = (x == split_a || x == split_b) ? split_seg : -1;
+      const int outer = m.tn[3 * t + e];
+      m.tn[3 * nt + 2] = outer;
+      m.tn[3 * nt] = -1;
+      m.tn[3 * nt + 1] = -1;
+      if (outer >= 0) m.tn[outer] = 3 * nt + 2;
+      m.tflag[nt] = (m.tflag[t] & (kSplitEdge0 << e)) ? (kSplitEdge0 << 2) : 0;
+      m.mark[nt] = 0;
+      m.rmark[nt] = 0;
+    }
+  }
+};
+
+struct LinkFan {
+  MeshView m;
+  const Candidate* cand;
+  const CavityTuple* tuples;
+  const int* failed;
+  int old_ntri;
+  int* error;
+  GDR_HD void operator()(long long i) const {
+    const CavityTuple& h = tuples[i];
+    if (h.state != kTupleCavity || failed[h.pt]) return;
+    const Candidate& c = cand[h.pt];
+    const int t = h.tri;
+    int r = 0;
+    for (int e = 0; e < 3; ++e) {
+      if (cavity_edge(m, c, t, e) != kEdgeFan) continue;
+      const int nt = old_ntri + m.aux[t] + r++;
+      // Rotate around y = end of the fan edge, through the cavity, to the fan edge that
+      // starts at y: the next triangle of the fan.
+      const int y = m.tv[3 * t + prev3(e)];
+      int u = t, k = prev3(e);
+      for (int guard = 0;; ++guard) {
+        if (guard > 100000) {
+          *error = 1;
+          return;
+        }
+        const int out_edge = prev3(k);  // edge (y, next vertex) of u
+        const int kind = cavity_edge(m, c, u, out_edge);
+        if (kind == kEdgeFan) {
+          const int nt2 = old_ntri + m.aux[u] + fan_rank(m, c, u, out_edge);
+          m.tn[3 * nt] = 3 * nt2 + 1;
+          m.tn[3 * nt2 + 1] = 3 * nt;
+          break;
+        }
+        if (kind == kEdgeHullSplit) break;  // the new hull subsegment (y, p): no neighbour
+        const int nb = m.tn[3 * u + out_edge];
+        u = nb / 3;
+        k = m.tv[3 * u] == y ? 0 : (m.tv[3 * u + 1] == y ? 1 : 2);
+      }
+    }
+  }
+};
+
+struct KillCavity {
+  MeshView m;
+  const CavityTuple* tuples;
+  const int* failed;
+  GDR_HD void operator()(long long i) const {
+    const CavityTuple& h = tuples[i];
+    if (h.state == kTupleCavity && !failed[h.pt]) m.tflag[h.tri] = kDead;
+  }
+};
+
+struct WritePoints {
+  MeshView m;
+  const Candidate* cand;
+  const int* failed;
+  const int* point_id;
+  GDR_HD void operator()(long long j) const {
+    if (failed[j]) return;
+    const Candidate& c = cand[j];
+    const int p = point_id[j];
+    m.xy[2 * p] = c.x;
+    m.xy[2 * p + 1] = c.y;
+    m.ptype[p] = c.kind == 0 ? kSegmentPoint : kFreePoint;
+    m.pseg[p] = c.kind == 0 ? m.ts[3 * c.et + c.ek] : -1;
+  }
+};
+
+// Compaction (S1): live triangles move to new_index[t]; neighbour links are remapped.
+struct MoveTriangles {
+  MeshView src;
+  const int* new_index;
+  int* tv;
+  int* tn;
+  int* ts;
+  int* tflag;
+  GDR_HD void operator()(long long t) const {
+    if (src.tflag[t] & kDead) return;
+    const int d = new_index[t];
+    for (int i = 0; i < 3; ++i) {
+      tv[3 * d + i] = src.tv[3 * t + i];
+      ts[3 * d + i] = src.ts[3 * t + i];
+      const int nb = src.tn[3 * t + i];
+      tn[3 * d + i] = nb < 0 ? -1 : 3 * new_index[nb / 3] + nb % 3;
+    }
+    tflag[d] = src.tflag[t] & ~kInCavity;
+  }
+};
+
+}  // namespace gdr::r2d

@@ -1,0 +1,115 @@
+// Triangulation storage for gDP2d as structures of arrays.
+//
+// Triangle t has vertices tv[3t..3t+2] (counter-clockwise). Edge i of t joins
+// tv[3t+(i+1)%3] and tv[3t+(i+2)%3]; it is opposite vertex i. tn[3t+i] is the neighbour
+// across edge i encoded as 3*t'+i' (so back-pointers are O(1)), or -1 on the domain
+// boundary. ts[3t+i] is the segment that edge i lies on (index into the segment table:
+// input segments first, then convex-hull edges), or -1 for an unconstrained edge.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "exec/buffer.h"
+#include "exec/hd.h"
+
+namespace gdr::r2d {
+
+// Per-triangle flag bits.
+enum : int {
+  kDead = 1u,        // removed by an insertion; compacted away later
+  kInCavity = 2u,    // part of a winning cavity during insertion
+  kSplitEdge0 = 4u,  // edge i (bit 2+i) is a subsegment that must be split (a rejected
+                     // circumcentre encroached it, or a walk ran into it)
+};
+
+// Per-point types (same values as gdr::PointType).
+enum : std::uint8_t { kInputPoint = 0, kSegmentPoint = 1, kFreePoint = 2 };
+
+// Host copy: what the initial CDT produces and what is downloaded at the end.
+struct HostMesh {
+  std::vector<double> xy;            // 2 per point
+  std::vector<std::uint8_t> ptype;   // per point
+  std::vector<int> pseg;             // per point: segment it lies on (segment points), else -1
+  std::vector<int> tv, tn, ts;       // 3 per triangle
+  std::vector<int> seg;              // 2 per segment: endpoint vertex ids
+  int input_segments = 0;            // segments [0, input_segments) come from the input
+  int triangles() const { return static_cast<int>(tv.size() / 3); }
+  int points() const { return static_cast<int>(ptype.size()); }
+};
+
+// Trivially copyable view passed to kernels by value.
+struct MeshView {
+  double* xy;
+  std::uint8_t* ptype;
+  int* pseg;
+  int* tv;
+  int* tn;
+  int* ts;
+  int* tflag;
+  exec::u64* mark;   // cavity claims
+  exec::u64* rmark;  // ring claims
+  int* aux;
+  const int* seg;
+  int ntri;
+  int npts;
+};
+
+template <class Space>
+struct DeviceMesh {
+  template <class T>
+  using Buf = exec::Buffer<Space, T>;
+  Buf<double> xy;
+  Buf<std::uint8_t> ptype;
+  Buf<int> pseg;
+  Buf<int> tv, tn, ts;
+  Buf<int> tflag;
+  Buf<exec::u64> mark;   // priority marks (S3 filter, cavity claims)
+  Buf<exec::u64> rmark;  // ring claims: triangles next to a cavity
+  Buf<int> aux;         // scratch per triangle (new-triangle slot base during insertion)
+  Buf<int> seg;
+  int ntri = 0, npts = 0;
+
+  MeshView view() {
+    return MeshView{xy.data(), ptype.data(), pseg.data(), tv.data(),  tn.data(),  ts.data(),
+                    tflag.data(), mark.data(), rmark.data(), aux.data(), seg.data(), ntri, npts};
+  }
+
+  void upload(const HostMesh& h) {
+    npts = h.points();
+    ntri = h.triangles();
+    xy.upload(h.xy);
+    ptype.upload(h.ptype);
+    pseg.upload(h.pseg);
+    tv.upload(h.tv);
+    tn.upload(h.tn);
+    ts.upload(h.ts);
+    seg.upload(h.seg);
+    tflag.resize_discard(ntri);
+    tflag.zero();
+    mark.resize_discard(ntri);
+    mark.zero();
+    rmark.resize_discard(ntri);
+    rmark.zero();
+    aux.resize_discard(ntri);
+  }
+
+  // Room for `tris` triangles and `pts` points, keeping contents.
+  void reserve(int tris, int pts) {
+    if (tris > ntri) {
+      tv.resize(3 * std::size_t(tris));
+      tn.resize(3 * std::size_t(tris));
+      ts.resize(3 * std::size_t(tris));
+      tflag.resize(tris);
+      mark.resize(tris);
+      rmark.resize(tris);
+      aux.resize(tris);
+    }
+    if (pts > npts) {
+      xy.resize(2 * std::size_t(pts));
+      ptype.resize(pts);
+      pseg.resize(pts);
+    }
+  }
+};
+
+}  // namespace gdr::r2d

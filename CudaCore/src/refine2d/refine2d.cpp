@@ -1,0 +1,177 @@
+// gDP2d facade: the paper's Algorithm 1 end to end.
+//   1. clean and check the PSLG, compute its CDT on the CPU (line 1);
+//   2. refine on the chosen backend (lines 2-9, engine.h);
+//   3. convert back and measure what is left bad.
+#include <chrono>
+#include <cmath>
+#include <new>
+
+#include "exec/space.h"
+#include "gdr/refine2d.h"
+#include "refine2d/engine_dispatch.h"
+#include "refine2d/input.h"
+
+namespace gdr {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+r2d::Criteria make_criteria(const Refine2dOptions& o) {
+  constexpr double kPi = 3.14159265358979323846;
+  r2d::Criteria c;
+  const double s = std::sin(o.min_angle * kPi / 180.0);
+  c.sin2_min_angle = o.min_angle > 0 ? s * s : 0.0;
+  c.max_edge2 = o.max_edge_length * o.max_edge_length;
+  c.max_area2 = 2.0 * o.max_area;
+  if (o.off_centers && o.min_angle > 0) {
+    const double beta = 1.0 / (2.0 * s);
+    c.offcenter_h = std::sqrt(beta * beta - 0.25);
+  }
+  c.chew = o.mode == EncroachMode::Chew ? 1 : 0;
+  return c;
+}
+
+// Rough output size, to let Auto choose the CPU for small jobs.
+std::size_t estimate_triangles(const r2d::HostMesh& m, const Refine2dOptions& o) {
+  double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+  for (std::size_t i = 0; i < m.xy.size(); i += 2) {
+    x0 = std::min(x0, m.xy[i]), x1 = std::max(x1, m.xy[i]);
+    y0 = std::min(y0, m.xy[i + 1]), y1 = std::max(y1, m.xy[i + 1]);
+  }
+  const double area = (x1 - x0) * (y1 - y0);
+  double est = 4.0 * m.points();
+  if (o.max_edge_length > 0) est = std::max(est, 2.0 * area / (0.433 * o.max_edge_length * o.max_edge_length));
+  if (o.max_area > 0) est = std::max(est, 2.0 * area / o.max_area);
+  return est > 1e15 ? std::size_t(1e15) : static_cast<std::size_t>(est);
+}
+
+}  // namespace
+
+Refine2dResult refine_2d(const Pslg& input, const Refine2dOptions& options, const Callbacks& cb) {
+  const auto t_start = Clock::now();
+  Refine2dResult result;
+  Refine2dStats& st = result.stats;
+  st.input_points = static_cast<long long>(input.points.size());
+  st.input_segments = static_cast<long long>(input.segments.size());
+  auto aborted = [&] { return cb.abort && cb.abort(); };
+  auto progress = [&](double f, const std::string& what) {
+    if (cb.progress) cb.progress(f, what);
+  };
+
+  progress(0.0, "checking input");
+  const r2d::CleanPslg pslg = r2d::clean_input(input, options, cb);
+  st.duplicate_points_merged = pslg.duplicates_merged;
+  if (aborted()) throw Error(Status::Aborted, "aborted by the caller");
+
+  progress(0.02, "constrained Delaunay triangulation");
+  auto t0 = Clock::now();
+  r2d::HostMesh mesh = r2d::initial_cdt(pslg, options.remove_exterior);
+  st.cdt_seconds = since(t0);
+  if (aborted()) throw Error(Status::Aborted, "aborted by the caller");
+  const int cdt_points = mesh.points();
+
+  const r2d::Criteria crit = make_criteria(options);
+  st.backend_used = resolve_backend(options.backend, estimate_triangles(mesh, options),
+                                    options.gpu_min_triangles);
+  if (st.backend_used == Backend::Gpu) st.device_name = device_info().name;
+  else st.device_name = "CPU (" + std::to_string(cpu_threads()) + " OpenMP threads)";
+
+  if (options.refine) {
+    r2d::EngineParams params;
+    params.criteria = crit;
+    params.max_steiner = options.max_steiner_points;
+    Callbacks engine_cb = cb;
+    if (cb.progress)  // iterations have no known total: report a slowly saturating fraction
+      engine_cb.progress = [&cb, n = 0](double, const std::string& what) mutable {
+        ++n;
+        cb.progress(0.05 + 0.9 * (1.0 - 1.0 / (1.0 + 0.05 * n)), what);
+      };
+    t0 = Clock::now();
+    r2d::EngineResult er;
+    try {
+      if (st.backend_used == Backend::Gpu) {
+#if defined(GDR_HAVE_CUDA)
+        er = r2d::refine_mesh_cuda(mesh, params, engine_cb);
+#endif
+      } else {
+        er = r2d::refine_mesh_cpu(mesh, params, engine_cb);
+      }
+    } catch (const std::bad_alloc&) {
+      throw Error(Status::OutOfDeviceMemory, "out of memory during refinement");
+    }
+    st.refine_seconds = since(t0);
+    st.iterations = er.iterations;
+    st.steiner_cap_reached = er.cap_reached;
+    st.stalled = er.stalled;
+    st.phases = er.phases;
+    if (st.backend_used == Backend::Gpu) st.peak_device_bytes = er.peak_bytes;
+    if (er.cap_reached && cb.warning)
+      cb.warning("refinement stopped at the Steiner point cap (" +
+                 std::to_string(options.max_steiner_points) + ")");
+    if (er.stalled && cb.warning)
+      cb.warning("refinement stopped: the remaining bad elements cannot be split");
+  }
+  progress(0.96, "writing the mesh");
+
+  // Convert back: points, triangles, point types, subsegments with their input segment.
+  TriMesh& out = result.mesh;
+  const int np = mesh.points(), nt = mesh.triangles();
+  out.points.resize(np);
+  out.point_type.resize(np);
+  for (int i = 0; i < np; ++i) {
+    out.points[i] = Point2{mesh.xy[2 * i], mesh.xy[2 * i + 1]};
+    out.point_type[i] = static_cast<PointType>(mesh.ptype[i]);
+  }
+  out.triangles.resize(nt);
+  for (int t = 0; t < nt; ++t) out.triangles[t] = {mesh.tv[3 * t], mesh.tv[3 * t + 1], mesh.tv[3 * t + 2]};
+  for (int t = 0; t < nt; ++t)
+    for (int i = 0; i < 3; ++i) {
+      const int s = mesh.ts[3 * t + i];
+      const int nb = mesh.tn[3 * t + i];
+      if (s < 0 || (nb >= 0 && nb < 3 * t + i)) continue;  // each subsegment once
+      out.subsegments.push_back({mesh.tv[3 * t + (i + 1) % 3], mesh.tv[3 * t + (i + 2) % 3]});
+      out.subsegment_source.push_back(s < mesh.input_segments ? pslg.segment_origin[s] : -1);
+    }
+
+  // What is left bad, and how much of it the small-angle rule protected.
+  r2d::MeshView view{mesh.xy.data(), mesh.ptype.data(), mesh.pseg.data(), mesh.tv.data(),
+                     mesh.tn.data(), mesh.ts.data(), nullptr, nullptr, nullptr, nullptr, mesh.seg.data(),
+                     nt, np};
+  double total_area = 0, bad_area = 0, min_angle = 180;
+  long long bad = 0, protected_bad = 0;
+  constexpr double kDeg = 180.0 / 3.14159265358979323846;
+#pragma omp parallel for reduction(+ : total_area, bad_area, bad, protected_bad) reduction(min : min_angle)
+  for (int t = 0; t < nt; ++t) {
+    const Point2 &a = out.points[out.triangles[t][0]], &b = out.points[out.triangles[t][1]],
+                 &c = out.points[out.triangles[t][2]];
+    const double area = 0.5 * std::fabs((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
+    total_area += area;
+    const int k = r2d::classify_triangle(view, t, crit);
+    if (k != r2d::kGood) {
+      ++bad;
+      bad_area += area;
+      if (k == r2d::kBadProtected) ++protected_bad;
+    }
+    const double la = std::hypot(b.x - c.x, b.y - c.y), lb = std::hypot(c.x - a.x, c.y - a.y),
+                 lc = std::hypot(a.x - b.x, a.y - b.y);
+    // Smallest angle is opposite the shortest edge; law of cosines, clamped.
+    double x = la, y = lb, z = lc;
+    if (y < x) std::swap(x, y);
+    if (z < x) std::swap(x, z);
+    const double cosv = std::clamp((y * y + z * z - x * x) / (2 * y * z), -1.0, 1.0);
+    min_angle = std::min(min_angle, std::acos(cosv) * kDeg);
+  }
+  st.output_points = np;
+  st.output_triangles = nt;
+  st.steiner_points = np - cdt_points;
+  st.bad_triangles = bad;
+  st.small_angle_bad = protected_bad;
+  st.bad_area_percent = total_area > 0 ? 100.0 * bad_area / total_area : 0.0;
+  st.min_angle_deg = nt ? min_angle : 0.0;
+  st.total_seconds = since(t_start);
+  progress(1.0, "done");
+  return result;
+}
+
+}  // namespace gdr
