@@ -78,6 +78,10 @@ bool split_conflicts(CleanPslg& g, const std::vector<SegmentConflict>& conflicts
       cuts[s].push_back(v);
   };
   for (const auto& c : conflicts) {
+    if (c.t < 0) {
+      add_cut_if_inside(c.s, c.point);
+      continue;
+    }
     const auto s = g.segments[c.s], t = g.segments[c.t];
     if (c.kind == SegmentConflict::Cross) {
       const Point2 &a = g.points[s[0]], &b = g.points[s[1]], &p = g.points[t[0]], &q = g.points[t[1]];
@@ -172,6 +176,13 @@ std::vector<SegmentConflict> find_segment_conflicts(const std::vector<Point2>& P
     for (int cy = cy0; cy <= cy1; ++cy)
       for (int cx = cx0; cx <= cx1; ++cx) cells[static_cast<std::size_t>(cy) * g + cx].push_back(int(i));
   }
+  // Points that end no segment may still lie on one (the CDT would split it silently).
+  std::vector<char> is_end(P.size(), 0);
+  for (const auto& s : S) is_end[s[0]] = is_end[s[1]] = 1;
+  std::vector<std::vector<int>> cell_points(cells.size());
+  for (std::size_t v = 0; v < P.size(); ++v)
+    if (!is_end[v] && P[v].x >= x0 && P[v].x <= x1 && P[v].y >= y0 && P[v].y <= y1)
+      cell_points[static_cast<std::size_t>(cell(P[v].y, y0)) * g + cell(P[v].x, x0)].push_back(int(v));
   const long long ncell = static_cast<long long>(cells.size());
 #pragma omp parallel
   {
@@ -185,16 +196,21 @@ std::vector<SegmentConflict> find_segment_conflicts(const std::vector<Point2>& P
           if (conflict(P, S[list[i]], S[list[j]], kind))
             local.push_back({std::min(list[i], list[j]), std::max(list[i], list[j]), kind});
         }
+      for (int v : cell_points[c])
+        for (int s : list)
+          if (pred::orient2d(xy(P, S[s][0]), xy(P, S[s][1]), xy(P, v)) == 0 &&
+              strictly_between(P[S[s][0]], P[S[s][1]], P[v]))
+            local.push_back({s, -1, SegmentConflict::Touch, v});
     }
 #pragma omp critical
     found.insert(found.end(), local.begin(), local.end());
   }
   std::sort(found.begin(), found.end(), [](const SegmentConflict& a, const SegmentConflict& b) {
-    return a.s != b.s ? a.s < b.s : a.t < b.t;
+    return a.s != b.s ? a.s < b.s : (a.t != b.t ? a.t < b.t : a.point < b.point);
   });
   found.erase(std::unique(found.begin(), found.end(),
                           [](const SegmentConflict& a, const SegmentConflict& b) {
-                            return a.s == b.s && a.t == b.t;
+                            return a.s == b.s && a.t == b.t && a.point == b.point;
                           }),
               found.end());
   if (found.size() > limit) found.resize(limit);
@@ -296,6 +312,12 @@ CleanPslg clean_input(const Pslg& in, const Refine2dOptions& o, const Callbacks&
       msg << "segments intersect other than at shared endpoints (first pairs, as input segment"
              " index: points):";
       for (const auto& c : conflicts) {
+        if (c.t < 0) {
+          const auto& s = g.segments[c.s];
+          msg << " point " << c.point << " lies on segment " << g.segment_origin[c.s] << " ("
+              << s[0] << "-" << s[1] << ");";
+          continue;
+        }
         const char* what = c.kind == SegmentConflict::Cross   ? "cross"
                            : c.kind == SegmentConflict::Touch ? "touch"
                                                               : "overlap";

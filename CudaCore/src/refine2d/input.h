@@ -30,8 +30,9 @@ HostMesh initial_cdt(const CleanPslg& pslg, bool remove_exterior);
 
 // Pairs of segments that cross, touch or overlap (exact predicates), at most `limit`.
 struct SegmentConflict {
-  int s, t;
+  int s, t;  // t = -1: an isolated point lies on segment s
   enum Kind { Cross, Touch, Overlap } kind;
+  int point = -1;
 };
 std::vector<SegmentConflict> find_segment_conflicts(const std::vector<Point2>& points,
                                                     const std::vector<std::array<int, 2>>& segs,

@@ -1,0 +1,484 @@
+// gDP2d end to end, on every backend: each mesh is checked by the validators (valid
+// triangulation, input points and segments present, constrained Delaunay by exact
+// predicates) and against the quality bound with its reported small-angle exceptions.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <random>
+
+#include "gdr/io.h"
+#include "gdr/refine2d.h"
+#include "gdr/validate.h"
+
+namespace {
+
+using gdr::Backend;
+using gdr::Point2;
+using gdr::Pslg;
+constexpr double kPi = 3.14159265358979323846;
+
+void add_loop(Pslg& g, const std::vector<Point2>& pts) {
+  const int base = static_cast<int>(g.points.size());
+  const int n = static_cast<int>(pts.size());
+  for (int i = 0; i < n; ++i) {
+    g.points.push_back(pts[i]);
+    g.segments.push_back({base + i, base + (i + 1) % n});
+  }
+}
+
+std::vector<Point2> regular_polygon(int n, double r, double cx = 0, double cy = 0, double phase = 0) {
+  std::vector<Point2> p;
+  for (int i = 0; i < n; ++i)
+    p.push_back({cx + r * std::cos(phase + 2 * kPi * i / n), cy + r * std::sin(phase + 2 * kPi * i / n)});
+  return p;
+}
+
+std::vector<Point2> square(double x0, double y0, double x1, double y1) {
+  return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+}
+
+class Refine2d : public ::testing::TestWithParam<Backend> {
+ protected:
+  void SetUp() override {
+    if (GetParam() == Backend::Gpu && !gdr::gpu_available())
+      GTEST_SKIP() << "no usable CUDA device: " << gdr::device_info().reason;
+  }
+
+  gdr::Refine2dOptions options() const {
+    gdr::Refine2dOptions o;
+    o.backend = GetParam();
+    return o;
+  }
+
+  // Meshes and validates; returns the result for further checks.
+  gdr::Refine2dResult mesh(const Pslg& g, gdr::Refine2dOptions o, bool check_input = true) {
+    o.backend = GetParam();
+    gdr::Refine2dResult r = gdr::refine_2d(g, o);
+    gdr::ValidateOptions vo;
+    vo.min_angle_deg = o.refine ? o.min_angle : 0;
+    const gdr::ValidationReport rep = gdr::validate_trimesh(r.mesh, check_input ? &g : nullptr, vo);
+    EXPECT_TRUE(rep.valid) << rep.summary();
+    EXPECT_EQ(rep.inverted_elements, 0u);
+    EXPECT_EQ(rep.nonmanifold, 0u);
+    EXPECT_EQ(rep.missing_points, 0u);
+    EXPECT_EQ(rep.missing_segments, 0u);
+    EXPECT_EQ(rep.non_delaunay, 0u);
+    const auto& s = r.stats;
+    EXPECT_EQ(s.output_triangles, static_cast<long long>(r.mesh.triangles.size()));
+    EXPECT_EQ(s.output_points, static_cast<long long>(r.mesh.points.size()));
+    if (o.refine && !s.steiner_cap_reached) {
+      EXPECT_FALSE(s.stalled);
+      // The bound holds except where the small-input-angle rule protected a triangle.
+      EXPECT_EQ(s.bad_triangles, s.small_angle_bad);
+      EXPECT_LE(rep.quality.bad_elements, static_cast<std::size_t>(s.bad_triangles));
+    }
+    return r;
+  }
+};
+
+TEST_P(Refine2d, SquareMeetsAngleBound) {
+  Pslg g;
+  add_loop(g, square(0, 0, 1, 1));
+  g.points.push_back({0.3, 0.31});
+  auto o = options();
+  o.min_angle = 30;
+  auto r = mesh(g, o);
+  EXPECT_EQ(r.stats.bad_triangles, 0);
+  EXPECT_GE(r.stats.min_angle_deg, 30.0 - 1e-9);
+}
+
+TEST_P(Refine2d, CdtOnlyAddsNoPoints) {
+  Pslg g;
+  add_loop(g, regular_polygon(7, 1.0));
+  auto o = options();
+  o.refine = false;
+  auto r = mesh(g, o);
+  EXPECT_EQ(r.stats.steiner_points, 0);
+  EXPECT_EQ(r.mesh.triangles.size(), 5u);
+}
+
+TEST_P(Refine2d, EdgeAndAreaBounds) {
+  Pslg g;
+  add_loop(g, square(0, 0, 10, 10));
+  auto o = options();
+  o.max_edge_length = 0.5;
+  auto r = mesh(g, o);
+  for (const auto& t : r.mesh.triangles)
+    for (int i = 0; i < 3; ++i) {
+      const Point2 &a = r.mesh.points[t[i]], &b = r.mesh.points[t[(i + 1) % 3]];
+      ASSERT_LE(std::hypot(a.x - b.x, a.y - b.y), 0.5 * (1 + 1e-12));
+    }
+  o.max_edge_length = 0;
+  o.max_area = 0.01;
+  r = mesh(g, o);
+  for (const auto& t : r.mesh.triangles)
+    ASSERT_LE(gdr::triangle_area(r.mesh.points[t[0]], r.mesh.points[t[1]], r.mesh.points[t[2]]),
+              0.01 * (1 + 1e-12));
+}
+
+TEST_P(Refine2d, PolygonWithHoleKeepsOnlyTheDomain) {
+  Pslg g;
+  add_loop(g, square(0, 0, 4, 4));
+  add_loop(g, square(1, 1, 2, 3));
+  g.holes.push_back({1.5, 2});
+  auto o = options();
+  o.remove_exterior = true;
+  o.max_area = 0.05;
+  auto r = mesh(g, o);
+  double area = 0;
+  for (const auto& t : r.mesh.triangles) {
+    const Point2 &a = r.mesh.points[t[0]], &b = r.mesh.points[t[1]], &c = r.mesh.points[t[2]];
+    area += gdr::triangle_area(a, b, c);
+    const double cx = (a.x + b.x + c.x) / 3, cy = (a.y + b.y + c.y) / 3;
+    ASSERT_FALSE(cx > 1 && cx < 2 && cy > 1 && cy < 3) << "triangle inside the hole";
+  }
+  EXPECT_NEAR(area, 16.0 - 2.0, 1e-9);
+}
+
+TEST_P(Refine2d, ExteriorOfConcavePolygonRemoved) {
+  Pslg g;  // an L shape: its convex hull has a notch the mesh must not fill
+  add_loop(g, {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}});
+  auto o = options();
+  o.remove_exterior = true;
+  auto r = mesh(g, o);
+  double area = 0;
+  for (const auto& t : r.mesh.triangles)
+    area += gdr::triangle_area(r.mesh.points[t[0]], r.mesh.points[t[1]], r.mesh.points[t[2]]);
+  EXPECT_NEAR(area, 3.0, 1e-12);
+}
+
+TEST_P(Refine2d, ConcentricPolygonsAndRefineAgainAddsNothing) {
+  Pslg g;
+  for (int k = 1; k <= 4; ++k) add_loop(g, regular_polygon(6 + 5 * k, k, 0, 0, 0.1 * k));
+  auto o = options();
+  o.min_angle = 25;
+  auto r = mesh(g, o);
+  EXPECT_GT(r.stats.steiner_points, 0);
+  EXPECT_EQ(r.stats.bad_triangles, 0);
+  // The output, read back as a PSLG (its subsegments as segments), is already good.
+  Pslg again;
+  again.points = r.mesh.points;
+  for (const auto& s : r.mesh.subsegments) again.segments.push_back({s[0], s[1]});
+  auto r2 = mesh(again, o);
+  EXPECT_EQ(r2.stats.steiner_points, 0);
+  EXPECT_EQ(r2.mesh.triangles.size(), r.mesh.triangles.size());
+}
+
+TEST_P(Refine2d, GridOfCocircularPoints) {
+  Pslg g;
+  const int n = 40;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) g.points.push_back({double(i), double(j)});
+  add_loop(g, square(-1, -1, n, n));
+  auto o = options();
+  o.min_angle = 28;
+  auto r = mesh(g, o);
+  EXPECT_EQ(r.stats.bad_triangles, 0);
+}
+
+TEST_P(Refine2d, RandomSegmentsInCells) {
+  // One random segment per grid cell: many segments, no crossings by construction.
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0.05, 0.95);
+  Pslg g;
+  const int n = 30;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const int a = static_cast<int>(g.points.size());
+      g.points.push_back({i + u(rng), j + u(rng)});
+      g.points.push_back({i + u(rng), j + u(rng)});
+      g.segments.push_back({a, a + 1});
+    }
+  auto o = options();
+  auto r = mesh(g, o);
+  EXPECT_EQ(r.stats.bad_triangles, r.stats.small_angle_bad);
+}
+
+TEST_P(Refine2d, CollinearChainsAndHullSegments) {
+  Pslg g;
+  for (int i = 0; i <= 20; ++i) g.points.push_back({i * 0.5, 0.0});
+  for (int i = 0; i < 20; ++i) g.segments.push_back({i, i + 1});
+  g.points.push_back({5, 3});
+  auto r = mesh(g, options());
+  // Hull edges become subsegments with no input segment.
+  int hull = 0;
+  for (int s : r.mesh.subsegment_source) hull += s < 0;
+  EXPECT_GT(hull, 0);
+}
+
+TEST_P(Refine2d, TinyInputAnglesTerminateAndReport) {
+  // A fan of segments 1 degree apart from one vertex (a comb of tiny angles), inside a box.
+  Pslg g;
+  add_loop(g, square(-2, -2, 2, 2));
+  const int apex = static_cast<int>(g.points.size());
+  g.points.push_back({0, 0});
+  for (int k = 0; k < 12; ++k) {
+    const double a = (k * 1.0) * kPi / 180.0;
+    g.points.push_back({1.5 * std::cos(a), 1.5 * std::sin(a)});
+    g.segments.push_back({apex, apex + 1 + k});
+  }
+  auto o = options();
+  auto r = mesh(g, o);
+  // The 1-degree wedges themselves (about 1.3% of the box) are where bad triangles may stay.
+  EXPECT_GT(r.stats.small_angle_bad, 0);
+  EXPECT_LT(r.stats.bad_area_percent, 1.35);
+}
+
+TEST_P(Refine2d, SpiralWithSubDegreeAngles) {
+  Pslg g;
+  std::vector<Point2> pts;
+  for (int i = 0; i < 200; ++i) {
+    const double t = 0.15 * i;
+    pts.push_back({(1 + 0.3 * t) * std::cos(t), (1 + 0.3 * t) * std::sin(t)});
+  }
+  for (std::size_t i = 0; i < pts.size(); ++i) g.points.push_back(pts[i]);
+  for (int i = 0; i + 1 < 200; ++i) g.segments.push_back({i, i + 1});
+  // A spike at 0.5 degrees off the last spiral segment.
+  const Point2 e = pts.back(), d = pts[198];
+  const double ang = std::atan2(d.y - e.y, d.x - e.x) + 0.5 * kPi / 180.0;
+  g.points.push_back({e.x + 0.3 * std::cos(ang), e.y + 0.3 * std::sin(ang)});
+  g.segments.push_back({199, 200});
+  auto r = mesh(g, options());
+  EXPECT_LT(r.stats.bad_area_percent, 1.0);
+}
+
+TEST_P(Refine2d, HugeAndTinyCoordinates) {
+  for (double scale : {1e-9, 1e12}) {
+    for (double offset : {0.0, 1e6}) {
+      Pslg g;
+      std::vector<Point2> p = regular_polygon(9, scale, offset * scale, 0);
+      add_loop(g, p);
+      g.points.push_back({offset * scale + 0.1 * scale, 0.2 * scale});
+      auto o = options();
+      o.min_angle = 25;
+      auto r = mesh(g, o);
+      EXPECT_EQ(r.stats.bad_triangles, 0) << "scale " << scale << " offset " << offset;
+    }
+  }
+}
+
+TEST_P(Refine2d, ChewModeAndOffCenters) {
+  Pslg g;
+  add_loop(g, regular_polygon(13, 1.0));
+  add_loop(g, regular_polygon(5, 0.3, 0.2, 0.1));
+  auto o = options();
+  o.min_angle = 25;
+  auto ruppert = mesh(g, o);
+  o.mode = gdr::EncroachMode::Chew;
+  auto chew = mesh(g, o);
+  EXPECT_EQ(chew.stats.bad_triangles, 0);
+  o.mode = gdr::EncroachMode::Ruppert;
+  o.off_centers = true;
+  auto off = mesh(g, o);
+  EXPECT_EQ(off.stats.bad_triangles, 0);
+  EXPECT_LE(off.stats.steiner_points, ruppert.stats.steiner_points * 11 / 10);
+}
+
+TEST_P(Refine2d, SteinerCapStopsCleanly) {
+  Pslg g;
+  add_loop(g, square(0, 0, 1, 1));
+  auto o = options();
+  o.max_area = 1e-4;
+  o.max_steiner_points = 100;
+  auto r = mesh(g, o);
+  EXPECT_TRUE(r.stats.steiner_cap_reached);
+  EXPECT_LE(r.stats.steiner_points, 100);
+  EXPECT_GT(r.stats.bad_triangles, 0);
+}
+
+TEST_P(Refine2d, SplitIntersectionsOption) {
+  Pslg g;
+  add_loop(g, square(0, 0, 4, 4));
+  g.points.push_back({1, 1});
+  g.points.push_back({3, 3});
+  g.points.push_back({1, 3});
+  g.points.push_back({3, 1});
+  g.points.push_back({2, 0.5});  // a vertex on the next segment's interior (T-junction)
+  g.segments.push_back({4, 5});
+  g.segments.push_back({6, 7});
+  g.segments.push_back({8, 2});  // touches nothing: ends on the hull corner
+  g.segments.push_back({1, 8});
+  auto o = options();
+  o.split_intersections = true;
+  auto r = mesh(g, o);
+  EXPECT_GT(r.mesh.points.size(), g.points.size());
+}
+
+TEST_P(Refine2d, SharedDataPslgs) {
+  const std::filesystem::path dir = std::filesystem::path(GDR_SHARED_DATA_DIR) / "pslg";
+  if (!std::filesystem::exists(dir)) GTEST_SKIP() << "no shared data at " << dir;
+  int n = 0;
+  for (const auto& f : std::filesystem::directory_iterator(dir)) {
+    if (f.path().extension() != ".poly") continue;
+    SCOPED_TRACE(f.path().string());
+    const Pslg g = gdr::io::read_poly(f.path().string());
+    auto r = mesh(g, options());
+    EXPECT_GT(r.stats.steiner_points, 0);
+    EXPECT_LT(r.stats.bad_area_percent, 0.01);
+    ++n;
+  }
+  EXPECT_GE(n, 3);
+}
+
+TEST_P(Refine2d, BundledData) {
+  const std::filesystem::path dir = std::filesystem::path(GDR_DATA_DIR);
+  int n = 0;
+  for (const auto& f : std::filesystem::directory_iterator(dir)) {
+    if (f.path().extension() != ".poly" || f.path().filename().string().rfind("broken", 0) == 0)
+      continue;
+    SCOPED_TRACE(f.path().string());
+    Pslg g;
+    try {
+      if (gdr::io::detect_input_kind(f.path().string()) != gdr::io::InputKind::Pslg2d) continue;
+      g = gdr::io::read_poly(f.path().string());
+    } catch (const gdr::Error&) {
+      continue;  // deliberately broken files are the I/O tests' business
+    }
+    auto o = options();
+    o.remove_exterior = !g.holes.empty();
+    mesh(g, o);
+    ++n;
+  }
+  EXPECT_GE(n, 1);
+}
+
+// ---- Bad input: each gives its own error, naming what is wrong. ----------------------
+
+gdr::Status status_of(const Pslg& g, gdr::Refine2dOptions o, std::string* msg = nullptr) {
+  try {
+    gdr::refine_2d(g, o);
+  } catch (const gdr::Error& e) {
+    if (msg) *msg = e.what();
+    return e.status();
+  }
+  return gdr::Status::Ok;
+}
+
+TEST_P(Refine2d, BadInputs) {
+  auto o = options();
+  Pslg ok;
+  add_loop(ok, square(0, 0, 1, 1));
+  std::string msg;
+
+  Pslg nan = ok;
+  nan.points[2].y = std::nan("");
+  EXPECT_EQ(status_of(nan, o, &msg), gdr::Status::InvalidInput);
+  EXPECT_NE(msg.find("NaN"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("2"), std::string::npos) << msg;
+
+  Pslg missing = ok;
+  missing.segments.push_back({1, 9});
+  EXPECT_EQ(status_of(missing, o, &msg), gdr::Status::InvalidInput);
+  EXPECT_NE(msg.find("segment 4"), std::string::npos) << msg;
+
+  Pslg zero = ok;
+  zero.points.push_back(zero.points[0]);
+  zero.segments.push_back({0, 4});
+  EXPECT_EQ(status_of(zero, o, &msg), gdr::Status::InvalidInput);
+  EXPECT_NE(msg.find("zero length"), std::string::npos) << msg;
+
+  Pslg line;
+  for (int i = 0; i < 5; ++i) line.points.push_back({double(i), 2.0 * i});
+  EXPECT_EQ(status_of(line, o, &msg), gdr::Status::InvalidInput);
+  EXPECT_NE(msg.find("collinear"), std::string::npos) << msg;
+
+  EXPECT_EQ(status_of(Pslg{}, o), gdr::Status::InvalidInput);
+
+  Pslg cross = ok;
+  cross.segments.push_back({0, 2});
+  cross.segments.push_back({1, 3});
+  EXPECT_EQ(status_of(cross, o, &msg), gdr::Status::SelfIntersectingInput);
+  EXPECT_NE(msg.find("segment 4"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("cross"), std::string::npos) << msg;
+
+  Pslg overlap = ok;
+  overlap.points.push_back({0.5, 0});
+  overlap.segments.push_back({0, 4});
+  EXPECT_EQ(status_of(overlap, o, &msg), gdr::Status::SelfIntersectingInput);
+  EXPECT_NE(msg.find("overlap"), std::string::npos) << msg;
+
+  Pslg on_segment = ok;
+  on_segment.points.push_back({0.25, 0});
+  EXPECT_EQ(status_of(on_segment, o, &msg), gdr::Status::SelfIntersectingInput);
+  EXPECT_NE(msg.find("point 4 lies on segment 0"), std::string::npos) << msg;
+  auto split = o;
+  split.split_intersections = true;
+  EXPECT_EQ(status_of(on_segment, split), gdr::Status::Ok);
+
+  auto big = o;
+  big.min_angle = 40;
+  EXPECT_EQ(status_of(ok, big, &msg), gdr::Status::InvalidInput);
+  EXPECT_NE(msg.find("34"), std::string::npos) << msg;
+  big = o;
+  big.max_edge_length = -1;
+  EXPECT_EQ(status_of(ok, big), gdr::Status::InvalidInput);
+  big = o;
+  big.max_area = std::nan("");
+  EXPECT_EQ(status_of(ok, big), gdr::Status::InvalidInput);
+
+  // Duplicates are merged and reported, not refused.
+  Pslg dup = ok;
+  dup.points.push_back(ok.points[1]);
+  dup.segments.push_back({4, 3});
+  gdr::Callbacks cb;
+  std::string warned;
+  cb.warning = [&](const std::string& w) { warned += w; };
+  auto r = gdr::refine_2d(dup, o, cb);
+  EXPECT_EQ(r.stats.duplicate_points_merged, 1);
+  EXPECT_NE(warned.find("duplicate"), std::string::npos);
+}
+
+TEST_P(Refine2d, AbortStopsTheRun) {
+  Pslg g;
+  add_loop(g, square(0, 0, 1, 1));
+  auto o = options();
+  o.max_area = 1e-5;
+  gdr::Callbacks cb;
+  int polls = 0;
+  cb.abort = [&] { return ++polls > 3; };
+  EXPECT_EQ([&] {
+    try {
+      gdr::refine_2d(g, o, cb);
+    } catch (const gdr::Error& e) {
+      return e.status();
+    }
+    return gdr::Status::Ok;
+  }(),
+            gdr::Status::Aborted);
+}
+
+TEST(Refine2dBackends, GpuAndCpuAgree) {
+  if (!gdr::gpu_available()) GTEST_SKIP() << "no usable CUDA device: " << gdr::device_info().reason;
+  const std::filesystem::path f =
+      std::filesystem::path(GDR_SHARED_DATA_DIR) / "pslg" / "us_counties_albers.poly";
+  if (!std::filesystem::exists(f)) GTEST_SKIP() << "no shared data";
+  const Pslg g = gdr::io::read_poly(f.string());
+  gdr::Refine2dOptions o;
+  o.backend = Backend::Cpu;
+  auto cpu = gdr::refine_2d(g, o);
+  o.backend = Backend::Gpu;
+  auto gpu = gdr::refine_2d(g, o);
+  EXPECT_EQ(gpu.stats.backend_used, Backend::Gpu);
+  const double a = double(cpu.stats.steiner_points), b = double(gpu.stats.steiner_points);
+  EXPECT_LE(std::fabs(a - b), 0.02 * std::max(a, b)) << "cpu " << a << " gpu " << b;
+  EXPECT_TRUE(gdr::validate_trimesh(gpu.mesh, &g).valid);
+}
+
+TEST(Refine2dBackends, GpuRequestedWithoutDeviceIsAClearError) {
+  if (gdr::gpu_available()) GTEST_SKIP() << "a GPU is present";
+  Pslg g;
+  add_loop(g, square(0, 0, 1, 1));
+  gdr::Refine2dOptions o;
+  o.backend = Backend::Gpu;
+  std::string msg;
+  EXPECT_EQ(status_of(g, o, &msg), gdr::Status::NoDevice);
+  EXPECT_NE(msg.find("GPU"), std::string::npos);
+  o.backend = Backend::Auto;
+  EXPECT_EQ(gdr::refine_2d(g, o).stats.backend_used, Backend::Cpu);
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, Refine2d, ::testing::Values(Backend::Cpu, Backend::Gpu),
+                         [](const auto& info) { return std::string(gdr::to_string(info.param)); });
+
+}  // namespace
