@@ -107,16 +107,23 @@ struct Ops<Cpu> {
     }
     const int nt = omp_get_max_threads();
     std::vector<T> partial(nt + 1, T(0));
+    int team = 1;
 #pragma omp parallel num_threads(nt)
     {
+      // The team may be smaller than asked (nested region, dynamic threads): split by
+      // the team actually granted, or some chunks would never be scanned.
+      const int nth = omp_get_num_threads();
       const int t = omp_get_thread_num();
-      const std::ptrdiff_t lo = m * t / nt, hi = m * (t + 1) / nt;
+      const std::ptrdiff_t lo = m * t / nth, hi = m * (t + 1) / nth;
       T s = T(0);
       for (std::ptrdiff_t i = lo; i < hi; ++i) s += in[i];
       partial[t + 1] = s;
 #pragma omp barrier
 #pragma omp single
-      for (int k = 0; k < nt; ++k) partial[k + 1] += partial[k];
+      {
+        team = nth;
+        for (int k = 0; k < nth; ++k) partial[k + 1] += partial[k];
+      }
       T run = partial[t];
       for (std::ptrdiff_t i = lo; i < hi; ++i) {
         T v = in[i];
@@ -124,7 +131,7 @@ struct Ops<Cpu> {
         run += v;
       }
     }
-    return partial[nt];
+    return partial[team];
   }
 };
 
