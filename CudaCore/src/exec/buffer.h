@@ -42,10 +42,11 @@ class Buffer {
     }
     size_ = n;
   }
-  // New size; the first min(old, n) elements are kept. Grows geometrically.
+  // New size; the first min(old, n) elements are kept. Grows geometrically (by a quarter:
+  // mesh arrays grow a little every iteration and device memory per element matters).
   void resize(std::size_t n) {
     if (n > capacity_) {
-      std::size_t cap = capacity_ + capacity_ / 2;
+      std::size_t cap = capacity_ + capacity_ / 4;
       if (cap < n) cap = n;
       Buffer bigger;
       bigger.allocate(cap);

@@ -1,6 +1,7 @@
 // gDP2d refinement loop (paper Algorithm 1), written once for any execution space.
 // engine_cpu.cpp instantiates it for OpenMP, engine_cuda.cu for CUDA.
 #pragma once
+#include <algorithm>
 #include <chrono>
 #include <string>
 #include <vector>
@@ -93,12 +94,13 @@ EngineResult refine_mesh(HostMesh& host, const EngineParams& params, const Callb
   dm.upload(host);
   clock.stop<Space>("upload");
 
-  exec::Buffer<Space, int> list, failed, point_id, count, error;
+  exec::Buffer<Space, int> list, work, failed, point_id, count, error;
   exec::Buffer<Space, Candidate> cand_all, cand;
   exec::Buffer<Space, CavityTuple> tuples;
   error.resize_discard(1);
   error.zero();
   int idle_iterations = 0;
+  long long dead = 0;  // dead triangles since the last compaction
   bool allow_deferment = true;
   const Criteria crit = params.criteria;
 
@@ -106,15 +108,32 @@ EngineResult refine_mesh(HostMesh& host, const EngineParams& params, const Callb
     if (cb.abort && cb.abort()) throw Error(Status::Aborted, "refinement aborted by the caller");
     clock.restart();
     // Line 3: collect encroached subsegments and bad triangles into one list (S1, S4).
-    const std::size_t nl =
-        exec::compact_indices<Space>(4 * std::size_t(dm.ntri), CollectElements{dm.view(), crit}, list);
+    std::size_t nl = 0;
+    {
+      // One mask per triangle (memory: one int per triangle, not four), then expanded.
+      int* mask = dm.aux.data();
+      Ops::for_each(dm.ntri, CollectMask{dm.view(), crit, mask});
+      const std::size_t nm = exec::compact_indices<Space>(
+          dm.ntri, [=] GDR_HD(long long t) { return mask[t] != 0; }, work);
+      count.resize_discard(nm);
+      int* cnt = count.data();
+      const int* tris = work.data();
+      Ops::for_each(nm, [=] GDR_HD(long long i) {
+        const int v = mask[tris[i]];
+        cnt[i] = (v & 1) + ((v >> 1) & 1) + ((v >> 2) & 1) + ((v >> 3) & 1);
+      });
+      nl = static_cast<std::size_t>(Ops::exclusive_scan(cnt, cnt, nm));
+      list.resize_discard(nl);
+      Ops::for_each(nm, ExpandElements{tris, mask, cnt, list.data()});
+    }
     clock.stop<Space>("collect");
     if (nl == 0) break;
     res.iterations = iter + 1;
 
     // Lines 5-6: splitting points, priorities, point location.
     cand_all.resize_discard(nl);
-    Ops::for_each(nl, ComputeSplittingPoints{dm.view(), crit, list.data(), cand_all.data()});
+    Ops::for_each(nl, ComputeSplittingPoints{dm.view(), crit, list.data(), cand_all.data(),
+                                                  0x9e3779b9u * static_cast<unsigned>(iter + 1)});
     clock.stop<Space>("split+locate");
 
     // Line 7: filter, one point per triangle (S3).
@@ -231,8 +250,13 @@ EngineResult refine_mesh(HostMesh& host, const EngineParams& params, const Callb
       if (error.get(0)) throw Error(Status::InternalError, "gDP2d: broken cavity while linking new triangles");
       res.inserted += won;
       clock.stop<Space>("insert");
-      // Compaction (S1): keeps the triangle arrays dense for the next collect.
-      detail::compact_triangles(dm);
+      // Compaction (S1), skipped while the dead are few: a cavity of k triangles leaves k
+      // dead ones and k+2 new ones.
+      dead += std::max<long long>(0, new_tris - 2 * won);
+      if (4 * dead > dm.ntri) {
+        detail::compact_triangles(dm);
+        dead = 0;
+      }
       clock.stop<Space>("compact");
       idle_iterations = 0;
     } else {

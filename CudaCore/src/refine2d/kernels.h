@@ -142,19 +142,43 @@ GDR_HD_INLINE void segment_split_point(const MeshView& m, int va, int vb, double
 }
 
 // ---------------------------------------------------------------------------------------
-// Collect (Algorithm 1 line 3, S4): one flag per (triangle, slot); slots 0-2 are the
-// triangle's edges as subsegments, slot 3 the triangle itself.
-struct CollectElements {
+// Collect (Algorithm 1 line 3, S4): per triangle a 4-bit mask; bits 0-2 are its edges as
+// encroached subsegments, bit 3 the triangle itself when it is bad.
+GDR_HD_INLINE int collect_mask(const MeshView& m, const Criteria& c, int t) {
+  if (m.tflag[t] & kDead) return 0;
+  int mask = classify_triangle(m, t, c) == kBad ? 8 : 0;
+  for (int k = 0; k < 3; ++k) {
+    if (m.ts[3 * t + k] < 0) continue;
+    if (m.tflag[t] & (kSplitEdge0 << k)) {
+      mask |= 1 << k;
+      continue;
+    }
+    const int a = m.tv[3 * t + next3(k)], b = m.tv[3 * t + prev3(k)], apex = m.tv[3 * t + k];
+    if (encroaches(pt(m, a), pt(m, b), pt(m, apex), c.chew)) mask |= 1 << k;
+  }
+  return mask;
+}
+
+struct CollectMask {
   MeshView m;
   Criteria c;
-  GDR_HD bool operator()(long long e) const {
-    const int t = static_cast<int>(e >> 2), k = static_cast<int>(e & 3);
-    if (m.tflag[t] & kDead) return false;
-    if (k == 3) return classify_triangle(m, t, c) == kBad;
-    if (m.ts[3 * t + k] < 0) return false;
-    if (m.tflag[t] & (kSplitEdge0 << k)) return true;
-    const int a = m.tv[3 * t + next3(k)], b = m.tv[3 * t + prev3(k)], apex = m.tv[3 * t + k];
-    return encroaches(pt(m, a), pt(m, b), pt(m, apex), c.chew);
+  int* mask;
+  GDR_HD void operator()(long long t) const {
+    mask[t] = collect_mask(m, c, static_cast<int>(t));
+  }
+};
+
+// Expands the triangles with a nonzero mask into the element list (t*4 + slot).
+struct ExpandElements {
+  const int* tris;
+  const int* mask;
+  const int* offset;
+  int* list;
+  GDR_HD void operator()(long long i) const {
+    const int t = tris[i];
+    int o = offset[i];
+    for (int k = 0; k < 4; ++k)
+      if (mask[t] & (1 << k)) list[o++] = 4 * t + k;
   }
 };
 
@@ -169,6 +193,24 @@ struct Candidate {
 };
 
 enum : unsigned { kClassTriangle = 1, kClassWalkSegment = 2, kClassEncroached = 3 };
+
+// Priorities: bigger elements first, but only by factor-of-two size classes; within a class
+// the order is a pseudo-random permutation of the candidates. Exact sizes would make
+// graded neighbourhoods into long chains where each point loses to its bigger neighbour and
+// only one point per chain could be inserted per iteration.
+GDR_HD_INLINE float size_class(double size) {
+  if (!(size > 0) || !(size < 1e38)) return size > 0 ? 1e38f : 0.0f;
+  return static_cast<float>(exp2(floor(log2(size))));
+}
+GDR_HD_INLINE unsigned shuffle_id(unsigned x, unsigned salt) {  // a bijection of 32 bits
+  x ^= salt;
+  x ^= x >> 16;
+  x *= 0x7feb352du;
+  x ^= x >> 15;
+  x *= 0x846ca68bu;
+  x ^= x >> 16;
+  return x;
+}
 
 GDR_HD_INLINE void make_segment_candidate(const MeshView& m, int t, int k, unsigned klass,
                                           unsigned id, Candidate& out) {
@@ -187,7 +229,7 @@ GDR_HD_INLINE void make_segment_candidate(const MeshView& m, int t, int k, unsig
   out.ek = k;
   out.start = t;
   out.kind = 0;
-  out.prio = exec::make_priority(klass, static_cast<float>(dist2(pt(m, a), pt(m, b))), id);
+  out.prio = exec::make_priority(klass, size_class(dist2(pt(m, a), pt(m, b))), id);
   // A split point that rounds onto an endpoint would duplicate it: leave that subsegment.
   if ((p[0] == pt(m, a)[0] && p[1] == pt(m, a)[1]) || (p[0] == pt(m, b)[0] && p[1] == pt(m, b)[1]))
     out.kind = -1;
@@ -200,12 +242,14 @@ struct ComputeSplittingPoints {
   Criteria c;
   const int* list;
   Candidate* out;
+  unsigned salt;  // changes every iteration
   GDR_HD void operator()(long long j) const {
     const int e = list[j];
     const int t = e >> 2, k = e & 3;
     Candidate& cand = out[j];
+    const unsigned id = shuffle_id(static_cast<unsigned>(j), salt);
     if (k < 3) {
-      make_segment_candidate(m, t, k, kClassEncroached, static_cast<unsigned>(j), cand);
+      make_segment_candidate(m, t, k, kClassEncroached, id, cand);
       return;
     }
     double p[2], r2;
@@ -230,14 +274,13 @@ struct ComputeSplittingPoints {
         cand.kind = 1;
         cand.start = u;
         cand.et = cand.ek = -1;
-        cand.prio = exec::make_priority(kClassTriangle, static_cast<float>(r2),
-                                        static_cast<unsigned>(j));
+        cand.prio = exec::make_priority(kClassTriangle, size_class(r2), id);
         return;
       }
       if (m.ts[3 * u + exit] >= 0 || m.tn[3 * u + exit] < 0) {
         if (m.ts[3 * u + exit] < 0) return;  // outside an unconstrained boundary: cannot happen
         exec::atomic_or(&m.tflag[u], kSplitEdge0 << exit);
-        make_segment_candidate(m, u, exit, kClassWalkSegment, static_cast<unsigned>(j), cand);
+        make_segment_candidate(m, u, exit, kClassWalkSegment, id, cand);
         return;
       }
       u = m.tn[3 * u + exit] / 3;

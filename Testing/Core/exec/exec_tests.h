@@ -235,7 +235,7 @@ void check_buffer() {
       b.resize(size);
       EXPECT_EQ(b.size(), size);
       EXPECT_GE(b.capacity(), size);
-      if (size > cap_before) EXPECT_GE(b.capacity(), cap_before + cap_before / 2) << "growth not geometric";
+      if (size > cap_before) EXPECT_GE(b.capacity(), cap_before + cap_before / 4) << "growth not geometric";
       int* p = b.data();
       Ops<Space>::for_each(s, [=] GDR_HD(long long i) {
         const long long k = static_cast<long long>(old) + i;
