@@ -4,6 +4,8 @@
 #include <cuda_runtime.h>
 
 #include <cub/device/device_scan.cuh>
+#include <algorithm>
+#include <cstring>
 #include <string>
 
 #include "exec/space.h"
@@ -61,8 +63,55 @@ struct Ops<Cuda> {
   static void copy_to_space(void* dst, const void* src, std::size_t bytes) {
     detail::cuda_check(cudaMemcpy(dst, src, bytes, cudaMemcpyHostToDevice), "upload");
   }
+  // Large downloads go through two pinned staging buffers: the copy of one chunk from the
+  // device overlaps the (multi-threaded) copy of the previous one into pageable memory.
   static void copy_to_host(void* dst, const void* src, std::size_t bytes) {
-    detail::cuda_check(cudaMemcpy(dst, src, bytes, cudaMemcpyDeviceToHost), "download");
+    constexpr std::size_t kChunk = std::size_t(32) << 20;
+    static char* staging[2] = {nullptr, nullptr};
+    static cudaStream_t stream = nullptr;
+    static cudaEvent_t done[2];
+    if (bytes < 4 * kChunk || (!staging[0] && !init_staging(staging, &stream, done, kChunk))) {
+      detail::cuda_check(cudaMemcpy(dst, src, bytes, cudaMemcpyDeviceToHost), "download");
+      return;
+    }
+    detail::cuda_check(cudaDeviceSynchronize(), "download");
+    const std::size_t n = (bytes + kChunk - 1) / kChunk;
+    auto issue = [&](std::size_t c) {
+      const std::size_t len = std::min(kChunk, bytes - c * kChunk);
+      detail::cuda_check(cudaMemcpyAsync(staging[c & 1], static_cast<const char*>(src) + c * kChunk,
+                                         len, cudaMemcpyDeviceToHost, stream),
+                         "download");
+      detail::cuda_check(cudaEventRecord(done[c & 1], stream), "download");
+    };
+    issue(0);
+    for (std::size_t c = 0; c < n; ++c) {
+      if (c + 1 < n) issue(c + 1);
+      detail::cuda_check(cudaEventSynchronize(done[c & 1]), "download");
+      const std::size_t len = std::min(kChunk, bytes - c * kChunk);
+      char* out = static_cast<char*>(dst) + c * kChunk;
+      const char* in = staging[c & 1];
+      const long long parts = 16;
+#pragma omp parallel for
+      for (long long p = 0; p < parts; ++p) {
+        const std::size_t b = len * p / parts, e = len * (p + 1) / parts;
+        std::memcpy(out + b, in + b, e - b);
+      }
+    }
+  }
+  static bool init_staging(char** staging, cudaStream_t* stream, cudaEvent_t* done,
+                           std::size_t chunk) {
+    for (int i = 0; i < 2; ++i)
+      if (cudaMallocHost(&staging[i], chunk) != cudaSuccess || cudaEventCreate(&done[i]) != cudaSuccess) {
+        cudaGetLastError();
+        staging[0] = staging[1] = nullptr;
+        return false;
+      }
+    if (cudaStreamCreateWithFlags(stream, cudaStreamNonBlocking) != cudaSuccess) {
+      cudaGetLastError();
+      staging[0] = staging[1] = nullptr;
+      return false;
+    }
+    return true;
   }
   static void copy_d2d(void* dst, const void* src, std::size_t bytes) {
     detail::cuda_check(cudaMemcpyAsync(dst, src, bytes, cudaMemcpyDeviceToDevice, 0), "copy");

@@ -58,26 +58,32 @@ class PhaseClock {
   std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
 };
 
+// In-place compaction: live triangles from the tail move into the dead slots of the head,
+// so no second copy of the mesh is ever held (device memory per element).
 template <class Space>
 void compact_triangles(DeviceMesh<Space>& dm) {
   using Ops = exec::Ops<Space>;
   const int n = dm.ntri;
-  exec::Buffer<Space, int> index(n);
-  int* idx = index.data();
+  int* rank = dm.aux.data();  // free between iterations
   const int* flag = dm.tflag.data();
-  Ops::for_each(n, [=] GDR_HD(long long t) { idx[t] = (flag[t] & kDead) ? 0 : 1; });
-  const int live = static_cast<int>(Ops::exclusive_scan(idx, idx, n));
-  exec::Buffer<Space, int> tv(3 * std::size_t(live)), tn(3 * std::size_t(live)),
-      ts(3 * std::size_t(live)), tf(live);
-  Ops::for_each(n, MoveTriangles{dm.view(), idx, tv.data(), tn.data(), ts.data(), tf.data()});
-  dm.tv.swap(tv);
-  dm.tn.swap(tn);
-  dm.ts.swap(ts);
-  dm.tflag.swap(tf);
+  Ops::for_each(n, [=] GDR_HD(long long t) { rank[t] = (flag[t] & kDead) ? 0 : 1; });
+  const int live = static_cast<int>(Ops::exclusive_scan(rank, rank, n));
+  exec::Buffer<Space, int> holes(std::size_t(n - live) + 1);
+  int* hole = holes.data();
+  Ops::for_each(live, [=] GDR_HD(long long t) {
+    if (flag[t] & kDead) hole[t - rank[t]] = static_cast<int>(t);
+  });
+  const int base = live < n ? dm.aux.get(live) : live;  // live triangles in the head
+  Ops::for_each(n - live, MoveTriangles{dm.view(), hole, live, base});
+  Ops::for_each(n - live, FixBackLinks{dm.view(), hole, live, base});
   dm.ntri = live;
-  dm.mark.resize_discard(live);
-  dm.rmark.resize_discard(live);
-  dm.aux.resize_discard(live);
+  dm.tv.resize(3 * std::size_t(live));
+  dm.tn.resize(3 * std::size_t(live));
+  dm.ts.resize(3 * std::size_t(live));
+  dm.tflag.resize(live);
+  dm.mark.resize(live);
+  dm.rmark.resize(live);
+  dm.aux.resize(live);
 }
 
 }  // namespace detail
@@ -275,14 +281,28 @@ EngineResult refine_mesh(HostMesh& host, const EngineParams& params, const Callb
   // Download the final mesh (live triangles only).
   clock.restart();
   detail::compact_triangles(dm);
+  // Each subsegment is reported once, from the side with the smaller edge code: that
+  // 3-bit mask replaces the neighbour links, which the host does not need (less to copy).
+  {
+    const MeshView mv = dm.view();
+    Ops::for_each(dm.ntri, [=] GDR_HD(long long t) {
+      int mask = 0;
+      for (int i = 0; i < 3; ++i) {
+        const int nb = mv.tn[3 * t + i];
+        if (mv.ts[3 * t + i] >= 0 && (nb < 0 || nb > 3 * t + i)) mask |= 1 << i;
+      }
+      mv.tflag[t] = mask;
+    });
+  }
+  dm.xy.resize(2 * std::size_t(dm.npts));
+  dm.ptype.resize(dm.npts);
+  dm.pseg.resize(dm.npts);
   host.xy = dm.xy.to_host();
-  host.xy.resize(2 * std::size_t(dm.npts));
   host.ptype = dm.ptype.to_host();
-  host.ptype.resize(dm.npts);
   host.pseg = dm.pseg.to_host();
-  host.pseg.resize(dm.npts);
   host.tv = dm.tv.to_host();
-  host.tn = dm.tn.to_host();
+  host.tn.clear();
+  host.subseg_mask = dm.tflag.to_host();
   host.ts = dm.ts.to_host();
   clock.stop<Space>("download");
   res.peak_bytes = exec::memory_counter<Space>().peak - mem_base;

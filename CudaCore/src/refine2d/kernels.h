@@ -593,24 +593,41 @@ struct WritePoints {
   }
 };
 
-// Compaction (S1): live triangles move to new_index[t]; neighbour links are remapped.
+// Compaction (S1), in place: the live triangle at tail position live+i moves into the r-th
+// dead slot of the head, r being its rank among the tail's live triangles; aux holds the
+// exclusive scan of the live flags, and `base` the number of live triangles in the head.
 struct MoveTriangles {
-  MeshView src;
-  const int* new_index;
-  int* tv;
-  int* tn;
-  int* ts;
-  int* tflag;
-  GDR_HD void operator()(long long t) const {
-    if (src.tflag[t] & kDead) return;
-    const int d = new_index[t];
-    for (int i = 0; i < 3; ++i) {
-      tv[3 * d + i] = src.tv[3 * t + i];
-      ts[3 * d + i] = src.ts[3 * t + i];
-      const int nb = src.tn[3 * t + i];
-      tn[3 * d + i] = nb < 0 ? -1 : 3 * new_index[nb / 3] + nb % 3;
+  MeshView m;
+  const int* hole;
+  int live, base;
+  GDR_HD int destination(int t) const { return t < live ? t : hole[m.aux[t] - base]; }
+  GDR_HD void operator()(long long i) const {
+    const int s = live + static_cast<int>(i);
+    if (m.tflag[s] & kDead) return;
+    const int d = destination(s);
+    for (int e = 0; e < 3; ++e) {
+      m.tv[3 * d + e] = m.tv[3 * s + e];
+      m.ts[3 * d + e] = m.ts[3 * s + e];
+      const int nb = m.tn[3 * s + e];
+      m.tn[3 * d + e] = nb < 0 ? -1 : 3 * destination(nb / 3) + nb % 3;
     }
-    tflag[d] = src.tflag[t] & ~kInCavity;
+    m.tflag[d] = m.tflag[s] & ~kInCavity;
+  }
+};
+
+// Then every neighbour of a moved triangle points back at its new slot.
+struct FixBackLinks {
+  MeshView m;
+  const int* hole;
+  int live, base;
+  GDR_HD void operator()(long long i) const {
+    const int s = live + static_cast<int>(i);
+    if (m.tflag[s] & kDead) return;
+    const int d = hole[m.aux[s] - base];
+    for (int e = 0; e < 3; ++e) {
+      const int nb = m.tn[3 * d + e];
+      if (nb >= 0) m.tn[nb] = 3 * d + e;
+    }
   }
 };
 

@@ -30,7 +30,8 @@ struct HostMesh {
   std::vector<double> xy;            // 2 per point
   std::vector<std::uint8_t> ptype;   // per point
   std::vector<int> pseg;             // per point: segment it lies on (segment points), else -1
-  std::vector<int> tv, tn, ts;       // 3 per triangle
+  std::vector<int> tv, tn, ts;       // 3 per triangle (tn may be empty after refinement)
+  std::vector<int> subseg_mask;      // per triangle: edges that report a subsegment, if no tn
   std::vector<int> seg;              // 2 per segment: endpoint vertex ids
   int input_segments = 0;            // segments [0, input_segments) come from the input
   int triangles() const { return static_cast<int>(tv.size() / 3); }

@@ -128,15 +128,17 @@ Refine2dResult refine_2d(const Pslg& input, const Refine2dOptions& options, cons
   for (int t = 0; t < nt; ++t)
     for (int i = 0; i < 3; ++i) {
       const int s = mesh.ts[3 * t + i];
-      const int nb = mesh.tn[3 * t + i];
-      if (s < 0 || (nb >= 0 && nb < 3 * t + i)) continue;  // each subsegment once
+      if (s < 0) continue;
+      if (mesh.tn.empty() ? !(mesh.subseg_mask[t] & (1 << i))
+                          : (mesh.tn[3 * t + i] >= 0 && mesh.tn[3 * t + i] < 3 * t + i))
+        continue;  // each subsegment once
       out.subsegments.push_back({mesh.tv[3 * t + (i + 1) % 3], mesh.tv[3 * t + (i + 2) % 3]});
       out.subsegment_source.push_back(s < mesh.input_segments ? pslg.segment_origin[s] : -1);
     }
 
   // What is left bad, and how much of it the small-angle rule protected.
   r2d::MeshView view{mesh.xy.data(), mesh.ptype.data(), mesh.pseg.data(), mesh.tv.data(),
-                     mesh.tn.data(), mesh.ts.data(), nullptr, nullptr, nullptr, nullptr, mesh.seg.data(),
+                     nullptr, mesh.ts.data(), nullptr, nullptr, nullptr, nullptr, mesh.seg.data(),
                      nt, np};
   double total_area = 0, bad_area = 0, min_angle = 180;
   long long bad = 0, protected_bad = 0;
