@@ -117,7 +117,8 @@ gdr::Refine2dOptions refine_options(const Case& c, double max_edge) {
 std::string phases_text(const gdr::Refine2dStats& s) {
   std::ostringstream out;
   out.precision(4);
-  for (const auto& p : s.phases) out << (out.tellp() > 0 ? ";" : "") << p.name << ':' << p.seconds;
+  out << "iterations:" << s.iterations;
+  for (const auto& p : s.phases) out << ';' << p.name << ':' << p.seconds;
   return out.str();
 }
 
