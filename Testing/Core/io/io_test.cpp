@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -15,7 +17,16 @@ namespace {
 using namespace gdr;
 const std::string kData = GDR_DATA_DIR;
 const std::string kShared = GDR_SHARED_DATA_DIR;
-const std::string kOut = GDR_TEST_OUTPUT_DIR;
+// The build's test folder, or a temporary one where the test program runs elsewhere (the GPU
+// machine runs test programs built here).
+const std::string kOut = [] {
+  std::filesystem::path p = GDR_TEST_OUTPUT_DIR;
+  if (!std::filesystem::is_directory(p)) {
+    p = std::filesystem::temp_directory_path() / "gdr_io_test";
+    std::filesystem::create_directories(p);
+  }
+  return p.string();
+}();
 
 bool exists(const std::string& p) { return std::ifstream(p).good(); }
 
