@@ -29,14 +29,14 @@ std::size_t compact_indices(std::size_t n, Pred pred, Buffer<Space, int>& out) {
   Buffer<Space, int> offset(n);
   int* off = offset.data();
   Ops<Space>::for_each(n, [=] GDR_HD(long long i) { off[i] = pred(i) ? 1 : 0; });
-  Buffer<Space, int> flag(n);
-  Ops<Space>::copy_d2d(flag.data(), off, n * sizeof(int));
   const std::size_t total = static_cast<std::size_t>(Ops<Space>::exclusive_scan(off, off, n));
   out.resize_discard(total);
   int* o = out.data();
-  const int* f = flag.data();
+  // Selected items are where the offset steps up (the last one steps up to the total).
+  const long long last = static_cast<long long>(n) - 1;
+  const int tot = static_cast<int>(total);
   Ops<Space>::for_each(n, [=] GDR_HD(long long i) {
-    if (f[i]) o[off[i]] = static_cast<int>(i);
+    if ((i < last ? off[i + 1] : tot) != off[i]) o[off[i]] = static_cast<int>(i);
   });
   return total;
 }

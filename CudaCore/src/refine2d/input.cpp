@@ -67,8 +67,8 @@ bool conflict(const std::vector<Point2>& P, const std::array<int, 2>& s,
 }
 
 // Splits segments at the conflicts found: crossings at their (rounded) intersection point,
-// touching vertices and overlap ends at the vertex. Returns false if nothing changed.
-bool split_conflicts(CleanPslg& g, const std::vector<SegmentConflict>& conflicts) {
+// touching vertices and overlap ends at the vertex.
+void split_conflicts(CleanPslg& g, const std::vector<SegmentConflict>& conflicts) {
   std::vector<std::vector<int>> cuts(g.segments.size());
   auto add_cut_if_inside = [&](int s, int v) {
     const auto& sg = g.segments[s];
@@ -96,7 +96,6 @@ bool split_conflicts(CleanPslg& g, const std::vector<SegmentConflict>& conflicts
       for (int v : {s[0], s[1]}) add_cut_if_inside(c.t, v);
     }
   }
-  bool changed = false;
   std::vector<std::array<int, 2>> segs;
   std::vector<int> origin;
   for (std::size_t s = 0; s < g.segments.size(); ++s) {
@@ -114,7 +113,6 @@ bool split_conflicts(CleanPslg& g, const std::vector<SegmentConflict>& conflicts
         origin.push_back(g.segment_origin[s]);
       }
       prev = v;
-      changed = true;
     }
     if (prev != g.segments[s][1]) {
       segs.push_back({prev, g.segments[s][1]});
@@ -123,7 +121,6 @@ bool split_conflicts(CleanPslg& g, const std::vector<SegmentConflict>& conflicts
   }
   g.segments.swap(segs);
   g.segment_origin.swap(origin);
-  return changed;
 }
 
 void dedupe_segments(CleanPslg& g, const Callbacks& cb) {

@@ -8,6 +8,7 @@
 
 #include "exec/space.h"
 #include "gdr/refine2d.h"
+#include "gdr/validate.h"
 #include "refine2d/engine_dispatch.h"
 #include "refine2d/input.h"
 
@@ -142,12 +143,11 @@ Refine2dResult refine_2d(const Pslg& input, const Refine2dOptions& options, cons
                      nt, np};
   double total_area = 0, bad_area = 0, min_angle = 180;
   long long bad = 0, protected_bad = 0;
-  constexpr double kDeg = 180.0 / 3.14159265358979323846;
 #pragma omp parallel for reduction(+ : total_area, bad_area, bad, protected_bad) reduction(min : min_angle)
   for (int t = 0; t < nt; ++t) {
     const Point2 &a = out.points[out.triangles[t][0]], &b = out.points[out.triangles[t][1]],
                  &c = out.points[out.triangles[t][2]];
-    const double area = 0.5 * std::fabs((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
+    const double area = triangle_area(a, b, c);
     total_area += area;
     const int k = r2d::classify_triangle(view, t, crit);
     if (k != r2d::kGood) {
@@ -155,14 +155,9 @@ Refine2dResult refine_2d(const Pslg& input, const Refine2dOptions& options, cons
       bad_area += area;
       if (k == r2d::kBadProtected) ++protected_bad;
     }
-    const double la = std::hypot(b.x - c.x, b.y - c.y), lb = std::hypot(c.x - a.x, c.y - a.y),
-                 lc = std::hypot(a.x - b.x, a.y - b.y);
-    // Smallest angle is opposite the shortest edge; law of cosines, clamped.
-    double x = la, y = lb, z = lc;
-    if (y < x) std::swap(x, y);
-    if (z < x) std::swap(x, z);
-    const double cosv = std::clamp((y * y + z * z - x * x) / (2 * y * z), -1.0, 1.0);
-    min_angle = std::min(min_angle, std::acos(cosv) * kDeg);
+    double lo, hi;
+    triangle_angles(a, b, c, lo, hi);
+    min_angle = std::min(min_angle, lo);
   }
   st.output_points = np;
   st.output_triangles = nt;
