@@ -158,8 +158,6 @@ int main(int argc, char** argv) {
         .add("bad_area_percent", area > 0 ? 100.0 * bad_area / area : 0.0);
     out.print();
     return 0;
-  } catch (const gdr::Error& e) {
-    out.add("status", "error").add("message", e.what());
   } catch (const std::exception& e) {
     out.add("status", "error").add("message", e.what());
   }

@@ -70,8 +70,6 @@ int main(int argc, char** argv) {
         .add("volume", r.volume);
     out.print();
     return 0;
-  } catch (const gdr::Error& e) {
-    out.add("status", "error").add("message", e.what());
   } catch (const std::exception& e) {
     out.add("status", "error").add("message", e.what());
   }

@@ -102,8 +102,6 @@ int main(int argc, char** argv) {
         .add("volume", q.volume);
     out.print();
     return 0;
-  } catch (const gdr::Error& e) {
-    out.add("status", "error").add("message", e.what());
   } catch (int code) {
     // TetGen's library mode reports failures by throwing its exit code.
     out.add("status", "error").add("message", "TetGen failed with code " + std::to_string(code));

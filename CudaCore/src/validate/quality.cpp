@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "gdr/validate.h"
+#include "validate/vec3.h"
 
 namespace gdr {
 namespace {
@@ -11,15 +12,11 @@ namespace {
 constexpr double kDeg = 180.0 / 3.14159265358979323846;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-struct V3 {
-  double x, y, z;
-};
-V3 sub(const Point3& a, const Point3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-V3 cross(const V3& a, const V3& b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-double dot(const V3& a, const V3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-double norm(const V3& a) { return std::sqrt(dot(a, a)); }
+using detail::V3;
+using detail::cross;
+using detail::dot;
+using detail::norm;
+using detail::sub;
 
 double angle_deg(double ux, double uy, double vx, double vy) {
   return std::atan2(std::fabs(ux * vy - uy * vx), ux * vx + uy * vy) * kDeg;

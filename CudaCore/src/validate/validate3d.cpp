@@ -8,6 +8,7 @@
 #include "predicates/predicates.h"
 #include "validate/conformity.h"
 #include "validate/incidence.h"
+#include "validate/vec3.h"
 
 namespace gdr {
 namespace {
@@ -35,14 +36,11 @@ bool even_order(int x, int y, int z) { return (x < y) + (y < z) + (z < x) == 2; 
 
 enum FaceStatus : std::uint8_t { kFaceOk = 0, kFaceNonmanifold, kFaceOverlap, kFaceNonDelaunay };
 
-struct V3 {
-  double x, y, z;
-};
-V3 sub(const Point3& a, const Point3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-V3 cross(const V3& a, const V3& b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-double dot(const V3& a, const V3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+using detail::V3;
+using detail::cross;
+using detail::dot;
+using detail::norm;
+using detail::sub;
 
 // Coverage of input triangle (a, b, c) by mesh triangles, measured in its own frame where
 // it is the unit right triangle u, v >= 0, u + v <= 1: a mesh triangle counts when its
