@@ -88,142 +88,165 @@ void compact_triangles(DeviceMesh<Space>& dm) {
 
 }  // namespace detail
 
+// One refinement run. run() is the paper's Algorithm 1; each method is one of its lines.
+// (Public members only: nvcc's device lambdas may not live in private member functions.)
 template <class Space>
-EngineResult refine_mesh(HostMesh& host, const EngineParams& params, const Callbacks& cb) {
+struct Engine {
   using Ops = exec::Ops<Space>;
+  template <class T>
+  using Buf = exec::Buffer<Space, T>;
+
+  const EngineParams& params;
+  const Callbacks& cb;
   EngineResult res;
-  exec::memory_counter<Space>().peak = exec::memory_counter<Space>().current;
-  const std::size_t mem_base = exec::memory_counter<Space>().current;
-  detail::PhaseClock clock(res.phases);
-
+  detail::PhaseClock clock{res.phases};
   DeviceMesh<Space> dm;
-  dm.upload(host);
-  clock.stop<Space>("upload");
-
-  exec::Buffer<Space, int> list, work, failed, point_id, count, error;
-  exec::Buffer<Space, Candidate> cand_all, cand;
-  exec::Buffer<Space, CavityTuple> tuples;
-  error.resize_discard(1);
-  error.zero();
-  int idle_iterations = 0;
-  long long dead = 0;  // dead triangles since the last compaction
+  Buf<int> list, work, failed, point_id, count, error;
+  Buf<Candidate> cand_all, cand;  // all splitting points, then the filtered ones
+  Buf<CavityTuple> tuples;
   bool allow_deferment = true;
-  const Criteria crit = params.criteria;
+  long long dead = 0;  // dead triangles since the last compaction
 
-  for (int iter = 0; iter < params.max_iterations; ++iter) {
-    if (cb.abort && cb.abort()) throw Error(Status::Aborted, "refinement aborted by the caller");
-    clock.restart();
-    // Line 3: collect encroached subsegments and bad triangles into one list (S1, S4).
-    std::size_t nl = 0;
-    {
-      // One mask per triangle (memory: one int per triangle, not four), then expanded.
-      int* mask = dm.aux.data();
-      Ops::for_each(dm.ntri, CollectMask{dm.view(), crit, mask});
-      const std::size_t nm = exec::compact_indices<Space>(
-          dm.ntri, [=] GDR_HD(long long t) { return mask[t] != 0; }, work);
-      count.resize_discard(nm);
-      int* cnt = count.data();
-      const int* tris = work.data();
-      Ops::for_each(nm, [=] GDR_HD(long long i) {
-        const int v = mask[tris[i]];
-        cnt[i] = (v & 1) + ((v >> 1) & 1) + ((v >> 2) & 1) + ((v >> 3) & 1);
-      });
-      nl = static_cast<std::size_t>(Ops::exclusive_scan(cnt, cnt, nm));
-      list.resize_discard(nl);
-      Ops::for_each(nm, ExpandElements{tris, mask, cnt, list.data()});
+  Engine(const EngineParams& p, const Callbacks& c) : params(p), cb(c) {}
+
+  void run(HostMesh& host) {
+    exec::memory_counter<Space>().peak = exec::memory_counter<Space>().current;
+    const std::size_t mem_base = exec::memory_counter<Space>().current;
+    dm.upload(host);
+    error.resize_discard(1);
+    error.zero();
+    clock.template stop<Space>("upload");
+    int idle = 0;
+    for (int iter = 0; iter < params.max_iterations; ++iter) {
+      if (cb.abort && cb.abort()) throw Error(Status::Aborted, "refinement aborted by the caller");
+      clock.restart();
+      const std::size_t nl = collect();                 // line 3
+      if (nl == 0) break;                               // line 9
+      res.iterations = iter + 1;
+      compute_splitting_points(nl, iter);               // lines 5-6
+      const std::size_t ns = filter(nl);                // line 7 (S3)
+      grow_cavities(ns);                                // line 7 (S2, S5)
+      const long long won = verify_and_number(ns);
+      if (won > 0) {
+        insert(ns, won);                                // line 8
+        idle = 0;
+      } else if (++idle >= 3) {
+        res.stalled = true;
+        break;
+      }
+      if (cb.progress)
+        cb.progress(0.0, "iteration " + std::to_string(iter + 1) + ": " + std::to_string(nl) +
+                             " bad elements, " + std::to_string(won) + " points inserted");
+      if (res.cap_reached) break;
     }
-    clock.stop<Space>("collect");
-    if (nl == 0) break;
-    res.iterations = iter + 1;
+    download(host);
+    res.peak_bytes = exec::memory_counter<Space>().peak - mem_base;
+  }
 
-    // Lines 5-6: splitting points, priorities, point location.
+  // Line 3: encroached subsegments and bad triangles in one list (S1, S4). One mask per
+  // triangle (one int of memory per triangle, not four), then expanded to t*4 + slot.
+  std::size_t collect() {
+    int* mask = dm.aux.data();
+    Ops::for_each(dm.ntri, CollectMask{dm.view(), params.criteria, mask});
+    const std::size_t nm =
+        exec::compact_indices<Space>(dm.ntri, [=] GDR_HD(long long t) { return mask[t] != 0; }, work);
+    count.resize_discard(nm);
+    int* cnt = count.data();
+    const int* tris = work.data();
+    Ops::for_each(nm, [=] GDR_HD(long long i) {
+      const int v = mask[tris[i]];
+      cnt[i] = (v & 1) + ((v >> 1) & 1) + ((v >> 2) & 1) + ((v >> 3) & 1);
+    });
+    const std::size_t nl = static_cast<std::size_t>(Ops::exclusive_scan(cnt, cnt, nm));
+    list.resize_discard(nl);
+    Ops::for_each(nm, ExpandElements{tris, mask, cnt, list.data()});
+    clock.template stop<Space>("collect");
+    return nl;
+  }
+
+  // Lines 5-6: splitting points, priorities, point location.
+  void compute_splitting_points(std::size_t nl, int iter) {
     cand_all.resize_discard(nl);
-    Ops::for_each(nl, ComputeSplittingPoints{dm.view(), crit, list.data(), cand_all.data(),
-                                                  0x9e3779b9u * static_cast<unsigned>(iter + 1)});
-    clock.stop<Space>("split+locate");
+    Ops::for_each(nl, ComputeSplittingPoints{dm.view(), params.criteria, list.data(), cand_all.data(),
+                                             0x9e3779b9u * static_cast<unsigned>(iter + 1)});
+    clock.template stop<Space>("split+locate");
+  }
 
-    // Line 7: filter, one point per triangle (S3).
+  // Line 7, first part (S3): one splitting point per triangle, by priority marks.
+  std::size_t filter(std::size_t nl) {
     dm.mark.zero();
     Ops::for_each(nl, ClaimStart{dm.view(), cand_all.data()});
-    {
-      const Candidate* ca = cand_all.data();
-      const u64* mk = dm.mark.data();
-      const std::size_t ns = exec::compact_indices<Space>(
-          nl,
-          [=] GDR_HD(long long j) { return ca[j].kind >= 0 && mk[ca[j].start] == ca[j].prio; },
-          list);
-      cand.resize_discard(ns);
-      Candidate* cs = cand.data();
-      const int* sel = list.data();
-      Ops::for_each(ns, [=] GDR_HD(long long j) { cs[j] = ca[sel[j]]; });
-    }
-    const std::size_t ns = cand.size();
+    const Candidate* ca = cand_all.data();
+    const u64* mk = dm.mark.data();
+    const std::size_t ns = exec::compact_indices<Space>(
+        nl, [=] GDR_HD(long long j) { return ca[j].kind >= 0 && mk[ca[j].start] == ca[j].prio; },
+        list);
+    cand.resize_discard(ns);
+    Candidate* cs = cand.data();
+    const int* sel = list.data();
+    Ops::for_each(ns, [=] GDR_HD(long long j) { cs[j] = ca[sel[j]]; });
     dm.mark.zero();  // survivors now claim their cavities from scratch
     dm.rmark.zero();
-    clock.stop<Space>("filter");
+    clock.template stop<Space>("filter");
+    return ns;
+  }
 
-    // Cavities by ExpandList (S2), deferring stragglers to the next iteration (S5).
+  // Line 7, second part: cavities by ExpandList (S2), stragglers deferred (S5). Starts from
+  // the triangle holding the point and, for a subsegment, the triangle across it.
+  void grow_cavities(std::size_t ns) {
     failed.resize_discard(ns);
     failed.zero();
-    {
-      std::size_t n0 = 0;
-      // Initial tuples: the start triangle, and the far side of a split subsegment.
-      count.resize_discard(ns);
-      const Candidate* cs = cand.data();
-      const MeshView mv = dm.view();
-      int* cnt = count.data();
-      Ops::for_each(ns, [=] GDR_HD(long long j) {
-        const Candidate& c = cs[j];
-        cnt[j] = (c.kind == 0 && mv.tn[3 * c.et + c.ek] >= 0) ? 2 : 1;
-      });
-      n0 = static_cast<std::size_t>(Ops::exclusive_scan(cnt, cnt, ns));
-      tuples.resize_discard(n0);
-      CavityTuple* tp = tuples.data();
-      Ops::for_each(ns, [=] GDR_HD(long long j) {
-        const Candidate& c = cs[j];
-        const int o = cnt[j];
-        tp[o] = CavityTuple{static_cast<int>(j), c.start, kForceIn};
-        if (c.kind == 0 && mv.tn[3 * c.et + c.ek] >= 0)
-          tp[o + 1] = CavityTuple{static_cast<int>(j), mv.tn[3 * c.et + c.ek] / 3, kForceIn};
-      });
-      exec::ExpandListLimits lim;
-      if (allow_deferment) {
-        lim.defer_after_rounds = 16;
-        lim.defer_below = ns / 64 + 32;
-      }
-      const exec::ExpandListResult er = exec::expand_list<Space, 3>(
-          tuples, n0, GrowCavity{dm.view(), cand.data(), failed.data(), crit.chew}, lim);
-      // Deferred cavities must finish next time, or big ones would block their
-      // neighbourhood forever.
-      allow_deferment = !er.deferred();
-      if (er.deferred()) {
-        // Points whose cavity is still growing give up this iteration (S5).
-        CavityTuple* pend = tuples.data() + er.pending_begin;
-        int* f = failed.data();
-        Ops::for_each(er.size - er.pending_begin, [=] GDR_HD(long long i) { f[pend[i].pt] = 1; });
-      }
-      tuples.resize(er.size);
+    count.resize_discard(ns);
+    const Candidate* cs = cand.data();
+    const MeshView mv = dm.view();
+    int* cnt = count.data();
+    Ops::for_each(ns, [=] GDR_HD(long long j) {
+      const Candidate& c = cs[j];
+      cnt[j] = (c.kind == 0 && mv.tn[3 * c.et + c.ek] >= 0) ? 2 : 1;
+    });
+    const std::size_t n0 = static_cast<std::size_t>(Ops::exclusive_scan(cnt, cnt, ns));
+    tuples.resize_discard(n0);
+    CavityTuple* tp = tuples.data();
+    Ops::for_each(ns, [=] GDR_HD(long long j) {
+      const Candidate& c = cs[j];
+      tp[cnt[j]] = CavityTuple{static_cast<int>(j), c.start, kForceIn};
+      if (c.kind == 0 && mv.tn[3 * c.et + c.ek] >= 0)
+        tp[cnt[j] + 1] = CavityTuple{static_cast<int>(j), mv.tn[3 * c.et + c.ek] / 3, kForceIn};
+    });
+    exec::ExpandListLimits lim;
+    if (allow_deferment) {
+      lim.defer_after_rounds = 16;
+      lim.defer_below = ns / 64 + 32;
     }
-    clock.stop<Space>("cavity");
+    const exec::ExpandListResult er = exec::expand_list<Space, 3>(
+        tuples, n0, GrowCavity{dm.view(), cand.data(), failed.data(), params.criteria.chew}, lim);
+    // Deferred cavities must finish next time, or big ones would block their neighbourhood
+    // forever. Points whose cavity is still growing give up this iteration.
+    allow_deferment = !er.deferred();
+    if (er.deferred()) {
+      CavityTuple* pend = tuples.data() + er.pending_begin;
+      int* f = failed.data();
+      Ops::for_each(er.size - er.pending_begin, [=] GDR_HD(long long i) { f[pend[i].pt] = 1; });
+    }
+    tuples.resize(er.size);
+    clock.template stop<Space>("cavity");
+  }
 
-    // Verify marks, then exact checks of each surviving cavity.
+  // Surviving marks and exact checks decide the winners; they get vertex numbers (the
+  // Steiner cap drops the surplus: winners are independent). Returns how many won.
+  long long verify_and_number(std::size_t ns) {
     const std::size_t nt = tuples.size();
     Ops::for_each(nt, VerifyClaims{dm.view(), cand.data(), tuples.data(), failed.data()});
     Ops::for_each(nt, SetInCavity{dm.view(), cand.data(), tuples.data(), failed.data(), 1});
     Ops::for_each(nt, CheckCavity{dm.view(), cand.data(), tuples.data(), failed.data()});
     Ops::for_each(nt, SetInCavity{dm.view(), cand.data(), tuples.data(), failed.data(), 0});
-
-    // New vertex numbers (and the Steiner cap: drop the surplus winners, all independent).
     point_id.resize_discard(ns);
-    {
-      const int* f = failed.data();
-      int* pid = point_id.data();
-      Ops::for_each(ns, [=] GDR_HD(long long j) { pid[j] = f[j] ? 0 : 1; });
-    }
-    long long won = Ops::exclusive_scan(point_id.data(), point_id.data(), ns);
+    const int* fc = failed.data();
+    int* pid = point_id.data();
+    Ops::for_each(ns, [=] GDR_HD(long long j) { pid[j] = fc[j] ? 0 : 1; });
+    long long won = Ops::exclusive_scan(pid, pid, ns);
     if (params.max_steiner >= 0 && res.inserted + won > params.max_steiner) {
       const int keep = static_cast<int>(params.max_steiner - res.inserted);
-      const int* pid = point_id.data();
       int* f = failed.data();
       Ops::for_each(ns, [=] GDR_HD(long long j) {
         if (!f[j] && pid[j] >= keep) f[j] = 1;
@@ -232,58 +255,46 @@ EngineResult refine_mesh(HostMesh& host, const EngineParams& params, const Callb
       won = keep;
       res.cap_reached = true;
     }
-    clock.stop<Space>("verify");
-
-    if (won > 0) {
-      // Insert (Algorithm 1 line 8): fan each cavity from its point.
-      count.resize_discard(nt);
-      Ops::for_each(nt, CountFanEdges{dm.view(), cand.data(), tuples.data(), failed.data(), count.data()});
-      const int new_tris = static_cast<int>(Ops::exclusive_scan(count.data(), count.data(), nt));
-      Ops::for_each(nt, StoreSlotBase{dm.view(), tuples.data(), failed.data(), count.data()});
-      const int old_ntri = dm.ntri, old_npts = dm.npts;
-      dm.reserve(old_ntri + new_tris, old_npts + static_cast<int>(won));
-      dm.ntri = old_ntri + new_tris;
-      dm.npts = old_npts + static_cast<int>(won);
-      {
-        int* pid = point_id.data();
-        Ops::for_each(ns, [=] GDR_HD(long long j) { pid[j] += old_npts; });
-      }
-      const MeshView mv = dm.view();
-      Ops::for_each(nt, CreateFan{mv, cand.data(), tuples.data(), failed.data(), point_id.data(), old_ntri});
-      Ops::for_each(nt, LinkFan{mv, cand.data(), tuples.data(), failed.data(), old_ntri, error.data()});
-      Ops::for_each(nt, KillCavity{mv, tuples.data(), failed.data()});
-      Ops::for_each(ns, WritePoints{mv, cand.data(), failed.data(), point_id.data()});
-      if (error.get(0)) throw Error(Status::InternalError, "gDP2d: broken cavity while linking new triangles");
-      res.inserted += won;
-      clock.stop<Space>("insert");
-      // Compaction (S1), skipped while the dead are few: a cavity of k triangles leaves k
-      // dead ones and k+2 new ones.
-      dead += std::max<long long>(0, new_tris - 2 * won);
-      if (4 * dead > dm.ntri) {
-        detail::compact_triangles(dm);
-        dead = 0;
-      }
-      clock.stop<Space>("compact");
-      idle_iterations = 0;
-    } else {
-      ++idle_iterations;
-      if (idle_iterations >= 3) {
-        res.stalled = true;
-        break;
-      }
-    }
-    if (cb.progress)
-      cb.progress(0.0, "iteration " + std::to_string(iter + 1) + ": " + std::to_string(nl) +
-                           " bad elements, " + std::to_string(won) + " points inserted");
-    if (res.cap_reached) break;
+    clock.template stop<Space>("verify");
+    return won;
   }
 
-  // Download the final mesh (live triangles only).
-  clock.restart();
-  detail::compact_triangles(dm);
-  // Each subsegment is reported once, from the side with the smaller edge code: that
-  // 3-bit mask replaces the neighbour links, which the host does not need (less to copy).
-  {
+  // Line 8: remesh each winning cavity as a fan from its point, then compact (S1) once a
+  // quarter of the triangles are dead (a cavity of k triangles leaves k dead, k+2 new).
+  void insert(std::size_t ns, long long won) {
+    const std::size_t nt = tuples.size();
+    count.resize_discard(nt);
+    Ops::for_each(nt, CountFanEdges{dm.view(), cand.data(), tuples.data(), failed.data(), count.data()});
+    const int new_tris = static_cast<int>(Ops::exclusive_scan(count.data(), count.data(), nt));
+    Ops::for_each(nt, StoreSlotBase{dm.view(), tuples.data(), failed.data(), count.data()});
+    const int old_ntri = dm.ntri, old_npts = dm.npts;
+    dm.reserve(old_ntri + new_tris, old_npts + static_cast<int>(won));
+    dm.ntri = old_ntri + new_tris;
+    dm.npts = old_npts + static_cast<int>(won);
+    int* pid = point_id.data();
+    Ops::for_each(ns, [=] GDR_HD(long long j) { pid[j] += old_npts; });
+    const MeshView mv = dm.view();
+    Ops::for_each(nt, CreateFan{mv, cand.data(), tuples.data(), failed.data(), pid, old_ntri});
+    Ops::for_each(nt, LinkFan{mv, cand.data(), tuples.data(), failed.data(), old_ntri, error.data()});
+    Ops::for_each(nt, KillCavity{mv, tuples.data(), failed.data()});
+    Ops::for_each(ns, WritePoints{mv, cand.data(), failed.data(), pid});
+    if (error.get(0)) throw Error(Status::InternalError, "gDP2d: broken cavity while linking new triangles");
+    res.inserted += won;
+    clock.template stop<Space>("insert");
+    dead += std::max<long long>(0, new_tris - 2 * won);
+    if (4 * dead > dm.ntri) {
+      detail::compact_triangles(dm);
+      dead = 0;
+    }
+    clock.template stop<Space>("compact");
+  }
+
+  // The final mesh, live triangles only. Each subsegment is reported once, from the side with
+  // the smaller edge code: that 3-bit mask replaces the neighbour links, which the host does
+  // not need (less to copy).
+  void download(HostMesh& host) {
+    clock.restart();
+    detail::compact_triangles(dm);
     const MeshView mv = dm.view();
     Ops::for_each(dm.ntri, [=] GDR_HD(long long t) {
       int mask = 0;
@@ -293,20 +304,25 @@ EngineResult refine_mesh(HostMesh& host, const EngineParams& params, const Callb
       }
       mv.tflag[t] = mask;
     });
+    dm.xy.resize(2 * std::size_t(dm.npts));
+    dm.ptype.resize(dm.npts);
+    dm.pseg.resize(dm.npts);
+    host.xy = dm.xy.to_host();
+    host.ptype = dm.ptype.to_host();
+    host.pseg = dm.pseg.to_host();
+    host.tv = dm.tv.to_host();
+    host.tn.clear();
+    host.subseg_mask = dm.tflag.to_host();
+    host.ts = dm.ts.to_host();
+    clock.template stop<Space>("download");
   }
-  dm.xy.resize(2 * std::size_t(dm.npts));
-  dm.ptype.resize(dm.npts);
-  dm.pseg.resize(dm.npts);
-  host.xy = dm.xy.to_host();
-  host.ptype = dm.ptype.to_host();
-  host.pseg = dm.pseg.to_host();
-  host.tv = dm.tv.to_host();
-  host.tn.clear();
-  host.subseg_mask = dm.tflag.to_host();
-  host.ts = dm.ts.to_host();
-  clock.stop<Space>("download");
-  res.peak_bytes = exec::memory_counter<Space>().peak - mem_base;
-  return res;
+};
+
+template <class Space>
+EngineResult refine_mesh(HostMesh& host, const EngineParams& params, const Callbacks& cb) {
+  Engine<Space> engine(params, cb);
+  engine.run(host);
+  return engine.res;
 }
 
 }  // namespace gdr::r2d
