@@ -300,7 +300,6 @@ struct ClaimStart {
 // ---------------------------------------------------------------------------------------
 // Cavity growth by ExpandList (Algorithm 4, S2): one tuple = (point, triangle).
 enum : int {
-  kTupleNew = 0,
   kTupleCavity = 1,  // first claim of a triangle in the point's cavity
   kTupleRing = 2,    // first claim of a triangle just outside it
   kTupleDup = 3,     // already claimed by the same point
