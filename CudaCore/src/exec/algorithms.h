@@ -20,14 +20,17 @@ void iota(int* p, std::size_t n, int start = 0) {
 
 // Stream compaction: writes, in increasing order, every i in [0,n) with pred(i) != 0 into
 // `out` and returns how many. `pred` is a host+device functor of (long long i) -> bool.
+// `scratch` (n ints, contents lost) holds the offsets; a caller's long-lived buffer saves an
+// allocation per call.
 template <class Space, class Pred>
-std::size_t compact_indices(std::size_t n, Pred pred, Buffer<Space, int>& out) {
+std::size_t compact_indices(std::size_t n, Pred pred, Buffer<Space, int>& out,
+                            Buffer<Space, int>& scratch) {
   if (n == 0) {
     out.resize_discard(0);
     return 0;
   }
-  Buffer<Space, int> offset(n);
-  int* off = offset.data();
+  scratch.resize_discard(n);
+  int* off = scratch.data();
   Ops<Space>::for_each(n, [=] GDR_HD(long long i) { off[i] = pred(i) ? 1 : 0; });
   const std::size_t total = static_cast<std::size_t>(Ops<Space>::exclusive_scan(off, off, n));
   out.resize_discard(total);
@@ -39,6 +42,12 @@ std::size_t compact_indices(std::size_t n, Pred pred, Buffer<Space, int>& out) {
     if ((i < last ? off[i + 1] : tot) != off[i]) o[off[i]] = static_cast<int>(i);
   });
   return total;
+}
+
+template <class Space, class Pred>
+std::size_t compact_indices(std::size_t n, Pred pred, Buffer<Space, int>& out) {
+  Buffer<Space, int> scratch;
+  return compact_indices<Space>(n, pred, out, scratch);
 }
 
 struct ExpandListResult {

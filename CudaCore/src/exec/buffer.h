@@ -42,11 +42,12 @@ class Buffer {
     }
     size_ = n;
   }
-  // New size; the first min(old, n) elements are kept. Grows geometrically (by a quarter:
-  // mesh arrays grow a little every iteration and device memory per element matters).
+  // New size; the first min(old, n) elements are kept. Grows geometrically, by a sixteenth:
+  // mesh arrays grow a little every iteration, device memory per element matters, and the
+  // copies are cheap next to the work of an iteration.
   void resize(std::size_t n) {
     if (n > capacity_) {
-      std::size_t cap = capacity_ + capacity_ / 4;
+      std::size_t cap = capacity_ + capacity_ / 16;
       if (cap < n) cap = n;
       Buffer bigger;
       bigger.allocate(cap);
@@ -84,6 +85,12 @@ class Buffer {
     std::vector<T> v(size_);
     download(v.data(), size_);
     return v;
+  }
+  // Into a host vector (a HostVector skips zeroing the new elements).
+  template <class Vec>
+  void to_host(Vec& v) const {
+    v.resize(size_);
+    download(v.data(), size_);
   }
   T get(std::size_t i) const {
     T v;

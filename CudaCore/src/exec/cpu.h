@@ -21,7 +21,8 @@ struct Ops<Cpu> {
   static constexpr std::ptrdiff_t serial_below = 4096;  // OpenMP start-up costs more below this
 
   // Allocations are cached by power-of-two size class: phases allocate scratch arrays every
-  // iteration, and fresh pages from the OS would cost a page fault each.
+  // iteration, and fresh pages from the OS would cost a page fault each. The memory counter
+  // counts the bytes asked for, as on the GPU.
   static std::size_t size_class(std::size_t bytes) {
     std::size_t c = 4096;
     while (c < bytes) c <<= 1;
@@ -46,7 +47,7 @@ struct Ops<Cpu> {
       if (it != pool().free_blocks.end()) {
         void* p = it->second;
         pool().free_blocks.erase(it);
-        memory_counter<Cpu>().add(c);
+        memory_counter<Cpu>().add(bytes);
         return p;
       }
     }
@@ -54,14 +55,14 @@ struct Ops<Cpu> {
     if (!p)
       throw Error(Status::OutOfDeviceMemory,
                   "out of host memory allocating " + std::to_string(bytes) + " bytes");
-    memory_counter<Cpu>().add(c);
+    memory_counter<Cpu>().add(bytes);
     return p;
   }
   static void deallocate(void* p, std::size_t bytes) {
     const std::size_t c = size_class(bytes);
     std::lock_guard<std::mutex> g(pool().lock);
     pool().free_blocks.emplace(c, p);
-    memory_counter<Cpu>().sub(c);
+    memory_counter<Cpu>().sub(bytes);
   }
   // Returns cached blocks to the system (end of a run).
   static void trim() {
@@ -72,8 +73,19 @@ struct Ops<Cpu> {
   static void copy_to_space(void* dst, const void* src, std::size_t bytes) {
     std::memcpy(dst, src, bytes);
   }
+  // Large copies by all threads: results land in fresh host memory, and the page faults of
+  // first touch cost as much as the copy.
   static void copy_to_host(void* dst, const void* src, std::size_t bytes) {
-    std::memcpy(dst, src, bytes);
+    if (bytes < (std::size_t(8) << 20)) {
+      std::memcpy(dst, src, bytes);
+      return;
+    }
+    const long long parts = 64;
+#pragma omp parallel for
+    for (long long p = 0; p < parts; ++p) {
+      const std::size_t b = bytes * p / parts, e = bytes * (p + 1) / parts;
+      std::memcpy(static_cast<char*>(dst) + b, static_cast<const char*>(src) + b, e - b);
+    }
   }
   static void copy_d2d(void* dst, const void* src, std::size_t bytes) {
     std::memcpy(dst, src, bytes);

@@ -70,7 +70,7 @@ struct Ops<Cuda> {
     static char* staging[2] = {nullptr, nullptr};
     static cudaStream_t stream = nullptr;
     static cudaEvent_t done[2];
-    if (bytes < 4 * kChunk || (!staging[0] && !init_staging(staging, &stream, done, kChunk))) {
+    if (bytes < 2 * kChunk || (!staging[0] && !init_staging(staging, &stream, done, kChunk))) {
       detail::cuda_check(cudaMemcpy(dst, src, bytes, cudaMemcpyDeviceToHost), "download");
       return;
     }
@@ -140,9 +140,12 @@ struct Ops<Cuda> {
   template <class T>
   static T exclusive_scan(const T* in, T* out, std::size_t n) {
     if (n == 0) return T(0);
-    // Total = last input + last output, read after the scan (in may alias out: keep last).
-    T last_in;
-    copy_to_host(&last_in, in + n - 1, sizeof(T));
+    // Total = last input + last output. Both are copied into pinned memory in stream order
+    // (the first before the scan, as `in` may alias `out`), so one synchronisation reads both.
+    static_assert(sizeof(T) <= 8, "scan of 8-byte values at most");
+    T* last = pinned_pair<T>();
+    detail::cuda_check(cudaMemcpyAsync(&last[0], in + n - 1, sizeof(T), cudaMemcpyDeviceToHost, 0),
+                       "scan");
     std::size_t temp_bytes = 0;
     detail::cuda_check(cub::DeviceScan::ExclusiveSum(nullptr, temp_bytes, in, out, (int)n),
                        "scan size");
@@ -150,9 +153,21 @@ struct Ops<Cuda> {
     cudaError_t e = cub::DeviceScan::ExclusiveSum(temp, temp_bytes, in, out, (int)n);
     deallocate(temp, temp_bytes);
     detail::cuda_check(e, "scan");
-    T last_out;
-    copy_to_host(&last_out, out + n - 1, sizeof(T));
-    return last_out + last_in;
+    detail::cuda_check(cudaMemcpyAsync(&last[1], out + n - 1, sizeof(T), cudaMemcpyDeviceToHost, 0),
+                       "scan");
+    detail::cuda_check(cudaStreamSynchronize(0), "scan");
+    return last[0] + last[1];
+  }
+
+  // Two pinned host slots for scan totals (allocated once per process and type).
+  template <class T>
+  static T* pinned_pair() {
+    static T* p = [] {
+      void* q = nullptr;
+      detail::cuda_check(cudaMallocHost(&q, 2 * sizeof(T)), "pinned allocation");
+      return static_cast<T*>(q);
+    }();
+    return p;
   }
 };
 

@@ -52,6 +52,16 @@ GDR_HD_INLINE int atomic_or(int* addr, int v) {
 #endif
 }
 
+// Compare-and-swap; returns the value found (== expected when the swap happened).
+GDR_HD_INLINE int atomic_cas(int* addr, int expected, int desired) {
+#if defined(__CUDA_ARCH__)
+  return atomicCAS(addr, expected, desired);
+#else
+  __atomic_compare_exchange_n(addr, &expected, desired, false, __ATOMIC_RELAXED, __ATOMIC_RELAXED);
+  return expected;
+#endif
+}
+
 GDR_HD_INLINE int atomic_min(int* addr, int v) {
 #if defined(__CUDA_ARCH__)
   return atomicMin(addr, v);

@@ -1,6 +1,11 @@
 // Atomic priority marking (the paper's S3 filter): many work items compete for mesh
-// elements; each writes its 64-bit priority with atomicMax and keeps the element only if
-// its mark survives. Priority = [class:2][size:30][id:32], so ties never happen.
+// elements; each raises the element's mark to itself if its priority is higher and keeps the
+// element only if its mark survives. Priority = [class:2][size:30][id:32].
+//
+// A mark is 32 bits: the number of the item holding it plus one (0 = free), not the 64-bit
+// priority itself, which saves 4 bytes per mesh element; comparisons read the holder's
+// priority through `prio_of(item)`. Ties (equal priorities) are broken by item number, so
+// every mark ends with the single highest item of its competitors.
 #pragma once
 #include <cstring>
 
@@ -26,13 +31,39 @@ GDR_HD_INLINE u64 make_priority(unsigned klass, float size, unsigned id) {
 
 GDR_HD_INLINE unsigned priority_id(u64 p) { return unsigned(p & 0xffffffffu); }
 
-// Claims `slot` for priority p. Returns +1 if p took it first, 0 if p held it already,
-// -1 if a higher priority holds it (p has lost this element).
-GDR_HD_INLINE int claim(u64* slot, u64 p) {
-  u64 old = atomic_max(slot, p);
-  if (old < p) return 1;
-  if (old == p) return 0;
-  return -1;
+// Does item `other` outrank item `me` of priority p?
+template <class PrioOf>
+GDR_HD_INLINE bool outranks(int other, int me, u64 p, const PrioOf& prio_of) {
+  const u64 q = prio_of(other);
+  return q > p || (q == p && other > me);
+}
+
+// Raises the mark `slot` to item `me` (priority p) unless a higher item holds it. Returns
+// the previous mark (holder + 1, 0 = free); it equals me + 1 if `me` held it already.
+template <class PrioOf>
+GDR_HD_INLINE int raise_mark(int* slot, int me, u64 p, const PrioOf& prio_of) {
+  int old = volatile_load(slot);
+  for (;;) {
+    if (old == me + 1 || (old != 0 && outranks(old - 1, me, p, prio_of))) return old;
+    const int seen = atomic_cas(slot, old, me + 1);
+    if (seen == old) return old;
+    old = seen;
+  }
+}
+
+// Claims `slot` for item `me`. Returns +1 if `me` took it, 0 if `me` held it already, -1 if
+// a higher item holds it (`me` has lost this element).
+template <class PrioOf>
+GDR_HD_INLINE int claim(int* slot, int me, u64 p, const PrioOf& prio_of) {
+  const int old = raise_mark(slot, me, p, prio_of);
+  if (old == me + 1) return 0;
+  return (old == 0 || !outranks(old - 1, me, p, prio_of)) ? 1 : -1;
+}
+
+// Is the mark held by an item that outranks `me`?
+template <class PrioOf>
+GDR_HD_INLINE bool held_above(int mark, int me, u64 p, const PrioOf& prio_of) {
+  return mark != 0 && mark != me + 1 && outranks(mark - 1, me, p, prio_of);
 }
 
 }  // namespace gdr::exec

@@ -3,6 +3,8 @@
 #pragma once
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -29,9 +31,10 @@ struct EngineResult {
   std::vector<PhaseTime> phases;
 };
 
-// Runs refinement on `mesh` in place (uploaded from and downloaded to the host copy).
+// Uploads `mesh`, refines it and downloads the result into `out`.
 template <class Space>
-EngineResult refine_mesh(HostMesh& mesh, const EngineParams& params, const Callbacks& cb);
+EngineResult refine_mesh(const HostMesh& mesh, MeshResult& out, const EngineParams& params,
+                         const Callbacks& cb);
 
 namespace detail {
 
@@ -82,7 +85,6 @@ void compact_triangles(DeviceMesh<Space>& dm) {
   dm.ts.resize(3 * std::size_t(live));
   dm.tflag.resize(live);
   dm.mark.resize(live);
-  dm.rmark.resize(live);
   dm.aux.resize(live);
 }
 
@@ -106,10 +108,12 @@ struct Engine {
   Buf<CavityTuple> tuples;
   bool allow_deferment = true;
   long long dead = 0;  // dead triangles since the last compaction
+  int rounds = 0;      // ExpandList rounds of the last cavity phase
+  const bool trace = std::getenv("GDR_TRACE") != nullptr;  // one line per iteration on stderr
 
   Engine(const EngineParams& p, const Callbacks& c) : params(p), cb(c) {}
 
-  void run(HostMesh& host) {
+  void run(const HostMesh& host, MeshResult& out) {
     exec::memory_counter<Space>().peak = exec::memory_counter<Space>().current;
     const std::size_t mem_base = exec::memory_counter<Space>().current;
     dm.upload(host);
@@ -137,29 +141,26 @@ struct Engine {
       if (cb.progress)
         cb.progress(0.0, "iteration " + std::to_string(iter + 1) + ": " + std::to_string(nl) +
                              " bad elements, " + std::to_string(won) + " points inserted");
+      if (trace)
+        std::fprintf(stderr, "gdr-trace iter %d: triangles %d, bad %zu, candidates %zu, won %lld, rounds %d, MB %.1f (peak %.1f)\n",
+                     iter + 1, dm.ntri, nl, ns, won, rounds,
+                     exec::memory_counter<Space>().current / 1048576.0,
+                     exec::memory_counter<Space>().peak / 1048576.0);
       if (res.cap_reached) break;
     }
-    download(host);
+    download(out);
     res.peak_bytes = exec::memory_counter<Space>().peak - mem_base;
   }
 
-  // Line 3: encroached subsegments and bad triangles in one list (S1, S4). One mask per
-  // triangle (one int of memory per triangle, not four), then expanded to t*4 + slot.
+  // Line 3: encroached subsegments and bad triangles in one list (S1, S4). Each triangle
+  // keeps a 4-bit mask in its flags and its entry count in aux; the in-place scan of the
+  // counts places the entries (t*4 + slot), so collecting needs no arrays of its own.
   std::size_t collect() {
-    int* mask = dm.aux.data();
-    Ops::for_each(dm.ntri, CollectMask{dm.view(), params.criteria, mask});
-    const std::size_t nm =
-        exec::compact_indices<Space>(dm.ntri, [=] GDR_HD(long long t) { return mask[t] != 0; }, work);
-    count.resize_discard(nm);
-    int* cnt = count.data();
-    const int* tris = work.data();
-    Ops::for_each(nm, [=] GDR_HD(long long i) {
-      const int v = mask[tris[i]];
-      cnt[i] = (v & 1) + ((v >> 1) & 1) + ((v >> 2) & 1) + ((v >> 3) & 1);
-    });
-    const std::size_t nl = static_cast<std::size_t>(Ops::exclusive_scan(cnt, cnt, nm));
+    Ops::for_each(dm.ntri, CollectMask{dm.view(), params.criteria});
+    int* cnt = dm.aux.data();
+    const std::size_t nl = static_cast<std::size_t>(Ops::exclusive_scan(cnt, cnt, dm.ntri));
     list.resize_discard(nl);
-    Ops::for_each(nm, ExpandElements{tris, mask, cnt, list.data()});
+    if (nl) Ops::for_each(dm.ntri, ExpandElements{dm.view(), list.data()});
     clock.template stop<Space>("collect");
     return nl;
   }
@@ -177,16 +178,17 @@ struct Engine {
     dm.mark.zero();
     Ops::for_each(nl, ClaimStart{dm.view(), cand_all.data()});
     const Candidate* ca = cand_all.data();
-    const u64* mk = dm.mark.data();
+    const int* mk = dm.mark.data();
     const std::size_t ns = exec::compact_indices<Space>(
-        nl, [=] GDR_HD(long long j) { return ca[j].kind >= 0 && mk[ca[j].start] == ca[j].prio; },
-        list);
+        nl, [=] GDR_HD(long long j) { return ca[j].kind >= 0 && mk[ca[j].start] == j + 1; }, list,
+        count);
     cand.resize_discard(ns);
     Candidate* cs = cand.data();
     const int* sel = list.data();
     Ops::for_each(ns, [=] GDR_HD(long long j) { cs[j] = ca[sel[j]]; });
+    cand_all.release();  // device memory: only the survivors are needed from here on
+    list.release();
     dm.mark.zero();  // survivors now claim their cavities from scratch
-    dm.rmark.zero();
     clock.template stop<Space>("filter");
     return ns;
   }
@@ -202,7 +204,7 @@ struct Engine {
     int* cnt = count.data();
     Ops::for_each(ns, [=] GDR_HD(long long j) {
       const Candidate& c = cs[j];
-      cnt[j] = (c.kind == 0 && mv.tn[3 * c.et + c.ek] >= 0) ? 2 : 1;
+      cnt[j] = (c.kind == 0 && mv.tn[3 * c.start + c.ek] >= 0) ? 2 : 1;
     });
     const std::size_t n0 = static_cast<std::size_t>(Ops::exclusive_scan(cnt, cnt, ns));
     tuples.resize_discard(n0);
@@ -210,8 +212,8 @@ struct Engine {
     Ops::for_each(ns, [=] GDR_HD(long long j) {
       const Candidate& c = cs[j];
       tp[cnt[j]] = CavityTuple{static_cast<int>(j), c.start, kForceIn};
-      if (c.kind == 0 && mv.tn[3 * c.et + c.ek] >= 0)
-        tp[cnt[j] + 1] = CavityTuple{static_cast<int>(j), mv.tn[3 * c.et + c.ek] / 3, kForceIn};
+      if (c.kind == 0 && mv.tn[3 * c.start + c.ek] >= 0)
+        tp[cnt[j] + 1] = CavityTuple{static_cast<int>(j), mv.tn[3 * c.start + c.ek] / 3, kForceIn};
     });
     exec::ExpandListLimits lim;
     if (allow_deferment) {
@@ -223,6 +225,7 @@ struct Engine {
     // Deferred cavities must finish next time, or big ones would block their neighbourhood
     // forever. Points whose cavity is still growing give up this iteration.
     allow_deferment = !er.deferred();
+    rounds = er.rounds;
     if (er.deferred()) {
       CavityTuple* pend = tuples.data() + er.pending_begin;
       int* f = failed.data();
@@ -260,7 +263,8 @@ struct Engine {
   }
 
   // Line 8: remesh each winning cavity as a fan from its point, then compact (S1) once a
-  // quarter of the triangles are dead (a cavity of k triangles leaves k dead, k+2 new).
+  // tenth of the triangles are dead (a cavity of k triangles leaves k dead, k+2 new): dead
+  // slots are device memory per element.
   void insert(std::size_t ns, long long won) {
     const std::size_t nt = tuples.size();
     count.resize_discard(nt);
@@ -282,46 +286,72 @@ struct Engine {
     res.inserted += won;
     clock.template stop<Space>("insert");
     dead += std::max<long long>(0, new_tris - 2 * won);
-    if (4 * dead > dm.ntri) {
+    if (10 * dead > dm.ntri) {
       detail::compact_triangles(dm);
       dead = 0;
     }
     clock.template stop<Space>("compact");
   }
 
-  // The final mesh, live triangles only. Each subsegment is reported once, from the side with
-  // the smaller edge code: that 3-bit mask replaces the neighbour links, which the host does
-  // not need (less to copy).
-  void download(HostMesh& host) {
+  // The final mesh, live triangles only, with its subsegments (each once, from the side with
+  // the smaller edge code) and its bad triangles listed on the device: the host needs neither
+  // neighbour nor segment links, so they are not copied.
+  void download(MeshResult& out) {
     clock.restart();
     detail::compact_triangles(dm);
     const MeshView mv = dm.view();
+    const Criteria crit = params.criteria;
+    int* cnt = dm.aux.data();
     Ops::for_each(dm.ntri, [=] GDR_HD(long long t) {
-      int mask = 0;
+      int n = 0;
       for (int i = 0; i < 3; ++i) {
         const int nb = mv.tn[3 * t + i];
-        if (mv.ts[3 * t + i] >= 0 && (nb < 0 || nb > 3 * t + i)) mask |= 1 << i;
+        n += mv.ts[3 * t + i] >= 0 && (nb < 0 || nb > 3 * t + i);
       }
-      mv.tflag[t] = mask;
+      cnt[t] = n;
     });
+    const std::size_t nsub = static_cast<std::size_t>(Ops::exclusive_scan(cnt, cnt, dm.ntri));
+    work.resize_discard(3 * nsub);
+    int* sub = work.data();
+    Ops::for_each(dm.ntri, [=] GDR_HD(long long t) {
+      int o = 3 * cnt[t];
+      for (int i = 0; i < 3; ++i) {
+        const int nb = mv.tn[3 * t + i];
+        if (mv.ts[3 * t + i] < 0 || (nb >= 0 && nb < 3 * t + i)) continue;
+        sub[o++] = mv.tv[3 * t + next3(i)];
+        sub[o++] = mv.tv[3 * t + prev3(i)];
+        sub[o++] = mv.ts[3 * t + i];
+      }
+    });
+    work.to_host(out.subseg);
+    Ops::for_each(dm.ntri, [=] GDR_HD(long long t) {
+      mv.tflag[t] = classify_triangle(mv, static_cast<int>(t), crit);
+      cnt[t] = mv.tflag[t] != kGood;
+    });
+    const std::size_t nbad = static_cast<std::size_t>(Ops::exclusive_scan(cnt, cnt, dm.ntri));
+    list.resize_discard(nbad);
+    int* bad = list.data();
+    const long long last = static_cast<long long>(dm.ntri) - 1;
+    const int total = static_cast<int>(nbad);
+    Ops::for_each(dm.ntri, [=] GDR_HD(long long t) {
+      if ((t < last ? cnt[t + 1] : total) != cnt[t])
+        bad[cnt[t]] = 2 * static_cast<int>(t) + (mv.tflag[t] == kBadProtected);
+    });
+    list.to_host(out.bad);
     dm.xy.resize(2 * std::size_t(dm.npts));
     dm.ptype.resize(dm.npts);
-    dm.pseg.resize(dm.npts);
-    host.xy = dm.xy.to_host();
-    host.ptype = dm.ptype.to_host();
-    host.pseg = dm.pseg.to_host();
-    host.tv = dm.tv.to_host();
-    host.tn.clear();
-    host.subseg_mask = dm.tflag.to_host();
-    host.ts = dm.ts.to_host();
+    dm.xy.to_host(out.xy);
+    dm.ptype.to_host(out.ptype);
+    dm.tv.to_host(out.tv);
     clock.template stop<Space>("download");
   }
 };
 
 template <class Space>
-EngineResult refine_mesh(HostMesh& host, const EngineParams& params, const Callbacks& cb) {
+EngineResult refine_mesh(const HostMesh& host, MeshResult& out, const EngineParams& params,
+                         const Callbacks& cb) {
   Engine<Space> engine(params, cb);
-  engine.run(host);
+  engine.run(host, out);
   return engine.res;
 }
 

@@ -3,11 +3,12 @@
 
 namespace gdr::r2d {
 
-EngineResult refine_mesh_cuda(HostMesh& mesh, const EngineParams& params, const Callbacks& cb) {
+EngineResult refine_mesh_cuda(const HostMesh& mesh, MeshResult& out, const EngineParams& params,
+                             const Callbacks& cb) {
   struct Trim {  // hand cached scratch memory back, also after an error
     ~Trim() { exec::Ops<exec::Cuda>::trim(); }
   } trim;
-  return refine_mesh<exec::Cuda>(mesh, params, cb);
+  return refine_mesh<exec::Cuda>(mesh, out, params, cb);
 }
 
 }  // namespace gdr::r2d

@@ -4,9 +4,11 @@
 
 namespace gdr::r2d {
 
-EngineResult refine_mesh_cpu(HostMesh& mesh, const EngineParams& params, const Callbacks& cb);
+EngineResult refine_mesh_cpu(const HostMesh& mesh, MeshResult& out, const EngineParams& params,
+                             const Callbacks& cb);
 #if defined(GDR_HAVE_CUDA)
-EngineResult refine_mesh_cuda(HostMesh& mesh, const EngineParams& params, const Callbacks& cb);
+EngineResult refine_mesh_cuda(const HostMesh& mesh, MeshResult& out, const EngineParams& params,
+                             const Callbacks& cb);
 #endif
 
 }  // namespace gdr::r2d

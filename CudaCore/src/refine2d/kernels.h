@@ -159,37 +159,47 @@ GDR_HD_INLINE int collect_mask(const MeshView& m, const Criteria& c, int t) {
   return mask;
 }
 
+// The mask goes to the triangle's flag bits and its number of entries to aux, which the
+// engine scans in place into list offsets (no per-triangle arrays beyond the mesh's own).
 struct CollectMask {
   MeshView m;
   Criteria c;
-  int* mask;
-  GDR_HD void operator()(long long t) const {
-    mask[t] = collect_mask(m, c, static_cast<int>(t));
+  GDR_HD void operator()(long long i) const {
+    const int t = static_cast<int>(i);
+    const int mask = collect_mask(m, c, t);
+    m.tflag[t] = (m.tflag[t] & ~kCollectBits) | (mask << kCollectShift);
+    m.aux[t] = (mask & 1) + ((mask >> 1) & 1) + ((mask >> 2) & 1) + ((mask >> 3) & 1);
   }
 };
 
-// Expands the triangles with a nonzero mask into the element list (t*4 + slot).
+// Expands the masks into the element list (t*4 + slot) at the scanned offsets.
 struct ExpandElements {
-  const int* tris;
-  const int* mask;
-  const int* offset;
+  MeshView m;
   int* list;
   GDR_HD void operator()(long long i) const {
-    const int t = tris[i];
-    int o = offset[i];
+    const int t = static_cast<int>(i);
+    const int mask = (m.tflag[t] & kCollectBits) >> kCollectShift;
+    int o = m.aux[t];
     for (int k = 0; k < 4; ++k)
-      if (mask[t] & (1 << k)) list[o++] = 4 * t + k;
+      if (mask & (1 << k)) list[o++] = 4 * t + k;
   }
 };
 
-// A splitting point and its claim (the paper's S): kind 0 splits subsegment (et, ek),
-// kind 1 is a free point (circumcentre) located in triangle `start`.
+// A splitting point and its claim (the paper's S): kind 0 splits the subsegment that is
+// edge ek of triangle `start` (its canonical side), kind 1 is a free point (circumcentre)
+// located in triangle `start`. 32 bytes.
 struct Candidate {
   double x, y;
   u64 prio;
-  int start;    // triangle it lies in (the canonical side for subsegments)
-  int et, ek;   // subsegment being split (kind 0)
-  int kind;     // -1: dropped this iteration
+  int start;
+  short kind;  // -1: dropped this iteration
+  short ek;
+};
+
+// Priority of candidate k, for the 32-bit marks (exec/priority.h).
+struct PrioOf {
+  const Candidate* cand;
+  GDR_HD_INLINE u64 operator()(int k) const { return cand[k].prio; }
 };
 
 enum : unsigned { kClassTriangle = 1, kClassWalkSegment = 2, kClassEncroached = 3 };
@@ -225,9 +235,8 @@ GDR_HD_INLINE void make_segment_candidate(const MeshView& m, int t, int k, unsig
   }
   out.x = p[0];
   out.y = p[1];
-  out.et = t;
-  out.ek = k;
   out.start = t;
+  out.ek = static_cast<short>(k);
   out.kind = 0;
   out.prio = exec::make_priority(klass, size_class(dist2(pt(m, a), pt(m, b))), id);
   // A split point that rounds onto an endpoint would duplicate it: leave that subsegment.
@@ -273,7 +282,7 @@ struct ComputeSplittingPoints {
       if (exit < 0) {  // p is in u (or on its boundary)
         cand.kind = 1;
         cand.start = u;
-        cand.et = cand.ek = -1;
+        cand.ek = -1;
         cand.prio = exec::make_priority(kClassTriangle, size_class(r2), id);
         return;
       }
@@ -293,7 +302,8 @@ struct ClaimStart {
   MeshView m;
   const Candidate* cand;
   GDR_HD void operator()(long long j) const {
-    if (cand[j].kind >= 0) exec::atomic_max(&m.mark[cand[j].start], cand[j].prio);
+    const Candidate& c = cand[j];
+    if (c.kind >= 0) exec::raise_mark(&m.mark[c.start], static_cast<int>(j), c.prio, PrioOf{cand});
   }
 };
 
@@ -316,8 +326,8 @@ struct CavityTuple {
 
 GDR_HD_INLINE bool is_split_edge(const MeshView& m, const Candidate& c, int t, int e) {
   if (c.kind != 0) return false;
-  if (t == c.et && e == c.ek) return true;
-  return m.tn[3 * c.et + c.ek] == 3 * t + e;
+  if (t == c.start && e == c.ek) return true;
+  return m.tn[3 * c.start + c.ek] == 3 * t + e;
 }
 
 struct GrowCavity {
@@ -339,13 +349,12 @@ struct GrowCavity {
     else
       in = pred::incircle(pt(m, m.tv[3 * t]), pt(m, m.tv[3 * t + 1]), pt(m, m.tv[3 * t + 2]), p) > 0;
     if (!in) {
-      // Ring: the triangle stays, only its link to the cavity changes. Rings may be shared
-      // by several points, but not with another point's cavity (checked in VerifyClaims).
-      const u64 old = exec::atomic_max(&m.rmark[t], c.prio);
-      h.state = old == c.prio ? kTupleDup : kTupleRing;
+      // Ring: the triangle stays, only its link to the cavity changes, unless another
+      // point's cavity takes it (checked in VerifyClaims).
+      h.state = kTupleRing;
       return 0;
     }
-    const int r = exec::claim(&m.mark[t], c.prio);
+    const int r = exec::claim(&m.mark[t], h.pt, c.prio, PrioOf{cand});
     if (r < 0) {
       failed[h.pt] = 1;
       h.state = kTupleLost;
@@ -381,7 +390,12 @@ struct GrowCavity {
   }
 };
 
-// Marks that did not survive mean a higher-priority point overlaps: drop this one.
+// Marks that did not survive mean a higher-priority point overlaps: drop this one. Cavities
+// may touch: where our ring triangle lies in a higher point's cavity, both fans meet across
+// the shared edges, and both points go in together only if each shared unconstrained edge
+// stays locally Delaunay (the other point not inside the circle of our new triangle on it),
+// so the mesh stays constrained Delaunay. The paper's cavities need not be independent
+// either; its flips repair such edges afterwards.
 struct VerifyClaims {
   MeshView m;
   const Candidate* cand;
@@ -389,11 +403,19 @@ struct VerifyClaims {
   int* failed;
   GDR_HD void operator()(long long i) const {
     const CavityTuple& h = tuples[i];
-    const u64 p = cand[h.pt].prio;
-    // A cavity triangle must be ours alone and not in a higher point's ring (adjacent
-    // cavities are Delaunay dependent); a ring triangle must not be in a higher cavity.
-    if (h.state == kTupleCavity && (m.mark[h.tri] != p || m.rmark[h.tri] > p)) failed[h.pt] = 1;
-    if (h.state == kTupleRing && m.mark[h.tri] > p) failed[h.pt] = 1;
+    if (h.state == kTupleCavity && m.mark[h.tri] != h.pt + 1) failed[h.pt] = 1;
+    if (h.state != kTupleRing) return;
+    const int r = h.tri, other = m.mark[r];
+    if (!exec::held_above(other, h.pt, cand[h.pt].prio, PrioOf{cand})) return;
+    const double p[2] = {cand[h.pt].x, cand[h.pt].y};
+    const double q[2] = {cand[other - 1].x, cand[other - 1].y};
+    for (int e = 0; e < 3; ++e) {
+      const int nb = m.tn[3 * r + e];
+      if (nb < 0 || m.ts[3 * r + e] >= 0 || m.mark[nb / 3] != h.pt + 1) continue;
+      const int c = nb / 3, ce = nb % 3;  // our cavity triangle and its edge on r
+      if (pred::incircle(pt(m, m.tv[3 * c + next3(ce)]), pt(m, m.tv[3 * c + prev3(ce)]), p, q) > 0)
+        failed[h.pt] = 1;
+    }
   }
 };
 
@@ -409,7 +431,7 @@ struct SetInCavity {
     if (value && !failed[h.pt]) m.tflag[h.tri] |= kInCavity;
     // Only the owner of the mark may clear: a failed point's tuple can name a triangle that
     // a winner took over.
-    if (!value && failed[h.pt] && m.mark[h.tri] == cand[h.pt].prio) m.tflag[h.tri] &= ~kInCavity;
+    if (!value && failed[h.pt] && m.mark[h.tri] == h.pt + 1) m.tflag[h.tri] &= ~kInCavity;
   }
 };
 
@@ -417,10 +439,10 @@ struct SetInCavity {
 // triangle (fan from the point), 2 the split subsegment on the domain boundary (no triangle).
 enum : int { kEdgeInterior = 0, kEdgeFan = 1, kEdgeHullSplit = 2 };
 
-GDR_HD_INLINE int cavity_edge(const MeshView& m, const Candidate& c, int t, int e) {
+GDR_HD_INLINE int cavity_edge(const MeshView& m, const Candidate& c, int j, int t, int e) {
   const int nb = m.tn[3 * t + e];
   if (is_split_edge(m, c, t, e)) return nb < 0 ? kEdgeHullSplit : kEdgeInterior;
-  if (nb >= 0 && (m.tflag[nb / 3] & kInCavity) && m.mark[nb / 3] == c.prio) return kEdgeInterior;
+  if (nb >= 0 && (m.tflag[nb / 3] & kInCavity) && m.mark[nb / 3] == j + 1) return kEdgeInterior;
   return kEdgeFan;
 }
 
@@ -438,7 +460,7 @@ struct CheckCavity {
     const double p[2] = {c.x, c.y};
     const int t = h.tri;
     for (int e = 0; e < 3; ++e) {
-      const int k = cavity_edge(m, c, t, e);
+      const int k = cavity_edge(m, c, h.pt, t, e);
       if (k == kEdgeInterior) {
         if (m.ts[3 * t + e] >= 0 && !is_split_edge(m, c, t, e)) failed[h.pt] = 1;
       } else if (k == kEdgeFan) {
@@ -459,7 +481,7 @@ struct CountFanEdges {
     const CavityTuple& h = tuples[i];
     int n = 0;
     if (h.state == kTupleCavity && !failed[h.pt])
-      for (int e = 0; e < 3; ++e) n += cavity_edge(m, cand[h.pt], h.tri, e) == kEdgeFan;
+      for (int e = 0; e < 3; ++e) n += cavity_edge(m, cand[h.pt], h.pt, h.tri, e) == kEdgeFan;
     count[i] = n;
   }
 };
@@ -475,9 +497,9 @@ struct StoreSlotBase {
   }
 };
 
-GDR_HD_INLINE int fan_rank(const MeshView& m, const Candidate& c, int t, int e) {
+GDR_HD_INLINE int fan_rank(const MeshView& m, const Candidate& c, int j, int t, int e) {
   int r = 0;
-  for (int i = 0; i < e; ++i) r += cavity_edge(m, c, t, i) == kEdgeFan;
+  for (int i = 0; i < e; ++i) r += cavity_edge(m, c, j, t, i) == kEdgeFan;
   return r;
 }
 
@@ -497,13 +519,13 @@ struct CreateFan {
     const int t = h.tri, p = point_id[h.pt];
     int split_a = -1, split_b = -1, split_seg = -1;
     if (c.kind == 0) {
-      split_a = m.tv[3 * c.et + next3(c.ek)];
-      split_b = m.tv[3 * c.et + prev3(c.ek)];
-      split_seg = m.ts[3 * c.et + c.ek];
+      split_a = m.tv[3 * c.start + next3(c.ek)];
+      split_b = m.tv[3 * c.start + prev3(c.ek)];
+      split_seg = m.ts[3 * c.start + c.ek];
     }
     int r = 0;
     for (int e = 0; e < 3; ++e) {
-      if (cavity_edge(m, c, t, e) != kEdgeFan) continue;
+      if (cavity_edge(m, c, h.pt, t, e) != kEdgeFan) continue;
       const int nt = old_ntri + m.aux[t] + r++;
       const int x = m.tv[3 * t + next3(e)], y = m.tv[3 * t + prev3(e)];
       m.tv[3 * nt] = x;
@@ -513,13 +535,19 @@ struct CreateFan {
       m.ts[3 * nt] = (y == split_a || y == split_b) ? split_seg : -1;
       m.ts[3 * nt + 1] = (x == split_a || x == split_b) ? split_seg : -1;
       const int outer = m.tn[3 * t + e];
-      m.tn[3 * nt + 2] = outer;
+      if (outer >= 0 && (m.tflag[outer / 3] & kInCavity)) {
+        // Another winner's cavity is across: link to its new triangle on this edge (it
+        // links back the same way).
+        const int r = outer / 3, q = m.mark[r] - 1;
+        m.tn[3 * nt + 2] = 3 * (old_ntri + m.aux[r] + fan_rank(m, cand[q], q, r, outer % 3)) + 2;
+      } else {
+        m.tn[3 * nt + 2] = outer;
+        if (outer >= 0) m.tn[outer] = 3 * nt + 2;
+      }
       m.tn[3 * nt] = -1;
       m.tn[3 * nt + 1] = -1;
-      if (outer >= 0) m.tn[outer] = 3 * nt + 2;
       m.tflag[nt] = (m.tflag[t] & (kSplitEdge0 << e)) ? (kSplitEdge0 << 2) : 0;
       m.mark[nt] = 0;
-      m.rmark[nt] = 0;
     }
   }
 };
@@ -538,7 +566,7 @@ struct LinkFan {
     const int t = h.tri;
     int r = 0;
     for (int e = 0; e < 3; ++e) {
-      if (cavity_edge(m, c, t, e) != kEdgeFan) continue;
+      if (cavity_edge(m, c, h.pt, t, e) != kEdgeFan) continue;
       const int nt = old_ntri + m.aux[t] + r++;
       // Rotate around y = end of the fan edge, through the cavity, to the fan edge that
       // starts at y: the next triangle of the fan.
@@ -550,9 +578,9 @@ struct LinkFan {
           return;
         }
         const int out_edge = prev3(k);  // edge (y, next vertex) of u
-        const int kind = cavity_edge(m, c, u, out_edge);
+        const int kind = cavity_edge(m, c, h.pt, u, out_edge);
         if (kind == kEdgeFan) {
-          const int nt2 = old_ntri + m.aux[u] + fan_rank(m, c, u, out_edge);
+          const int nt2 = old_ntri + m.aux[u] + fan_rank(m, c, h.pt, u, out_edge);
           m.tn[3 * nt] = 3 * nt2 + 1;
           m.tn[3 * nt2 + 1] = 3 * nt;
           break;
@@ -588,7 +616,7 @@ struct WritePoints {
     m.xy[2 * p] = c.x;
     m.xy[2 * p + 1] = c.y;
     m.ptype[p] = c.kind == 0 ? kSegmentPoint : kFreePoint;
-    m.pseg[p] = c.kind == 0 ? m.ts[3 * c.et + c.ek] : -1;
+    m.pseg[p] = c.kind == 0 ? m.ts[3 * c.start + c.ek] : -1;
   }
 };
 

@@ -11,6 +11,7 @@
 
 #include "exec/buffer.h"
 #include "exec/hd.h"
+#include "exec/host_vector.h"
 
 namespace gdr::r2d {
 
@@ -20,20 +21,34 @@ enum : int {
   kInCavity = 2u,    // part of a winning cavity during insertion
   kSplitEdge0 = 4u,  // edge i (bit 2+i) is a subsegment that must be split (a rejected
                      // circumcentre encroached it, or a walk ran into it)
+  kCollectShift = 5,  // bits 5-8: this iteration's collect mask (kernels.h, collect_mask)
+  kCollectBits = 15 << kCollectShift,
 };
 
 // Per-point types (same values as gdr::PointType).
 enum : std::uint8_t { kInputPoint = 0, kSegmentPoint = 1, kFreePoint = 2 };
 
-// Host copy: what the initial CDT produces and what is downloaded at the end.
+// Host copy of what the initial CDT produces: the engine's input.
 struct HostMesh {
   std::vector<double> xy;            // 2 per point
   std::vector<std::uint8_t> ptype;   // per point
   std::vector<int> pseg;             // per point: segment it lies on (segment points), else -1
-  std::vector<int> tv, tn, ts;       // 3 per triangle (tn may be empty after refinement)
-  std::vector<int> subseg_mask;      // per triangle: edges that report a subsegment, if no tn
+  std::vector<int> tv, tn, ts;       // 3 per triangle
   std::vector<int> seg;              // 2 per segment: endpoint vertex ids
   int input_segments = 0;            // segments [0, input_segments) come from the input
+  int triangles() const { return static_cast<int>(tv.size() / 3); }
+  int points() const { return static_cast<int>(ptype.size()); }
+};
+
+// The engine's output: the final mesh (live triangles only) in the forms the facade reports,
+// built on the device so that no neighbour or segment links need to be copied.
+struct MeshResult {
+  exec::HostVector<double> xy;           // 2 per point
+  exec::HostVector<std::uint8_t> ptype;  // per point
+  exec::HostVector<int> tv;              // 3 per triangle
+  exec::HostVector<int> subseg;          // 3 per subsegment: its two vertices and its segment
+  exec::HostVector<int> bad;             // triangles left bad: 2t, or 2t+1 where the
+                                         // small-input-angle rule protects them
   int triangles() const { return static_cast<int>(tv.size() / 3); }
   int points() const { return static_cast<int>(ptype.size()); }
 };
@@ -47,8 +62,7 @@ struct MeshView {
   int* tn;
   int* ts;
   int* tflag;
-  exec::u64* mark;   // cavity claims
-  exec::u64* rmark;  // ring claims
+  int* mark;  // cavity claims: candidate + 1 (exec/priority.h)
   int* aux;
   const int* seg;
   int ntri;
@@ -64,15 +78,14 @@ struct DeviceMesh {
   Buf<int> pseg;
   Buf<int> tv, tn, ts;
   Buf<int> tflag;
-  Buf<exec::u64> mark;   // priority marks (S3 filter, cavity claims)
-  Buf<exec::u64> rmark;  // ring claims: triangles next to a cavity
+  Buf<int> mark;  // priority marks (S3 filter, cavity claims)
   Buf<int> aux;         // scratch per triangle (new-triangle slot base during insertion)
   Buf<int> seg;
   int ntri = 0, npts = 0;
 
   MeshView view() {
     return MeshView{xy.data(), ptype.data(), pseg.data(), tv.data(),  tn.data(),  ts.data(),
-                    tflag.data(), mark.data(), rmark.data(), aux.data(), seg.data(), ntri, npts};
+                    tflag.data(), mark.data(), aux.data(), seg.data(), ntri, npts};
   }
 
   void upload(const HostMesh& h) {
@@ -89,8 +102,6 @@ struct DeviceMesh {
     tflag.zero();
     mark.resize_discard(ntri);
     mark.zero();
-    rmark.resize_discard(ntri);
-    rmark.zero();
     aux.resize_discard(ntri);
   }
 
@@ -102,7 +113,6 @@ struct DeviceMesh {
       ts.resize(3 * std::size_t(tris));
       tflag.resize(tris);
       mark.resize(tris);
-      rmark.resize(tris);
       aux.resize(tris);
     }
     if (pts > npts) {

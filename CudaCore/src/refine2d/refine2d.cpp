@@ -78,29 +78,33 @@ Refine2dResult refine_2d(const Pslg& input, const Refine2dOptions& options, cons
   if (st.backend_used == Backend::Gpu) st.device_name = device_info().name;
   else st.device_name = "CPU (" + std::to_string(cpu_threads()) + " OpenMP threads)";
 
-  if (options.refine) {
-    r2d::EngineParams params;
-    params.criteria = crit;
-    params.max_steiner = options.max_steiner_points;
-    Callbacks engine_cb = cb;
-    if (cb.progress)  // iterations have no known total: report a slowly saturating fraction
-      engine_cb.progress = [&cb, n = 0](double, const std::string& what) mutable {
-        ++n;
-        cb.progress(0.05 + 0.9 * (1.0 - 1.0 / (1.0 + 0.05 * n)), what);
-      };
-    t0 = Clock::now();
-    r2d::EngineResult er;
-    try {
-      if (st.backend_used == Backend::Gpu) {
+  // Refinement (or, with refine off, only the engine's upload and download, which list the
+  // subsegments and bad triangles the same way).
+  r2d::EngineParams params;
+  params.criteria = crit;
+  params.max_steiner = options.max_steiner_points;
+  if (!options.refine) params.max_iterations = 0;
+  Callbacks engine_cb = cb;
+  if (cb.progress)  // iterations have no known total: report a slowly saturating fraction
+    engine_cb.progress = [&cb, n = 0](double, const std::string& what) mutable {
+      ++n;
+      cb.progress(0.05 + 0.9 * (1.0 - 1.0 / (1.0 + 0.05 * n)), what);
+    };
+  t0 = Clock::now();
+  r2d::MeshResult mesh_out;
+  r2d::EngineResult er;
+  try {
+    if (st.backend_used == Backend::Gpu) {
 #if defined(GDR_HAVE_CUDA)
-        er = r2d::refine_mesh_cuda(mesh, params, engine_cb);
+      er = r2d::refine_mesh_cuda(mesh, mesh_out, params, engine_cb);
 #endif
-      } else {
-        er = r2d::refine_mesh_cpu(mesh, params, engine_cb);
-      }
-    } catch (const std::bad_alloc&) {
-      throw Error(Status::OutOfDeviceMemory, "out of memory during refinement");
+    } else {
+      er = r2d::refine_mesh_cpu(mesh, mesh_out, params, engine_cb);
     }
+  } catch (const std::bad_alloc&) {
+    throw Error(Status::OutOfDeviceMemory, "out of memory during refinement");
+  }
+  if (options.refine) {
     st.refine_seconds = since(t0);
     st.iterations = er.iterations;
     st.steiner_cap_reached = er.cap_reached;
@@ -117,48 +121,47 @@ Refine2dResult refine_2d(const Pslg& input, const Refine2dOptions& options, cons
 
   // Convert back: points, triangles, point types, subsegments with their input segment.
   TriMesh& out = result.mesh;
-  const int np = mesh.points(), nt = mesh.triangles();
+  const int np = mesh_out.points(), nt = mesh_out.triangles();
   out.points.resize(np);
   out.point_type.resize(np);
-  for (int i = 0; i < np; ++i) {
-    out.points[i] = Point2{mesh.xy[2 * i], mesh.xy[2 * i + 1]};
-    out.point_type[i] = static_cast<PointType>(mesh.ptype[i]);
-  }
   out.triangles.resize(nt);
-  for (int t = 0; t < nt; ++t) out.triangles[t] = {mesh.tv[3 * t], mesh.tv[3 * t + 1], mesh.tv[3 * t + 2]};
+#pragma omp parallel for
+  for (int i = 0; i < np; ++i) {
+    out.points[i] = Point2{mesh_out.xy[2 * i], mesh_out.xy[2 * i + 1]};
+    out.point_type[i] = static_cast<PointType>(mesh_out.ptype[i]);
+  }
+#pragma omp parallel for
   for (int t = 0; t < nt; ++t)
-    for (int i = 0; i < 3; ++i) {
-      const int s = mesh.ts[3 * t + i];
-      if (s < 0) continue;
-      if (mesh.tn.empty() ? !(mesh.subseg_mask[t] & (1 << i))
-                          : (mesh.tn[3 * t + i] >= 0 && mesh.tn[3 * t + i] < 3 * t + i))
-        continue;  // each subsegment once
-      out.subsegments.push_back({mesh.tv[3 * t + (i + 1) % 3], mesh.tv[3 * t + (i + 2) % 3]});
-      out.subsegment_source.push_back(s < mesh.input_segments ? pslg.segment_origin[s] : -1);
-    }
+    out.triangles[t] = {mesh_out.tv[3 * t], mesh_out.tv[3 * t + 1], mesh_out.tv[3 * t + 2]};
+  const std::size_t nsub = mesh_out.subseg.size() / 3;
+  out.subsegments.resize(nsub);
+  out.subsegment_source.resize(nsub);
+  for (std::size_t k = 0; k < nsub; ++k) {
+    const int s = mesh_out.subseg[3 * k + 2];
+    out.subsegments[k] = {mesh_out.subseg[3 * k], mesh_out.subseg[3 * k + 1]};
+    out.subsegment_source[k] = s < mesh.input_segments ? pslg.segment_origin[s] : -1;
+  }
 
-  // What is left bad, and how much of it the small-angle rule protected.
-  r2d::MeshView view{mesh.xy.data(), mesh.ptype.data(), mesh.pseg.data(), mesh.tv.data(),
-                     nullptr, mesh.ts.data(), nullptr, nullptr, nullptr, nullptr, mesh.seg.data(),
-                     nt, np};
-  double total_area = 0, bad_area = 0, min_angle = 180;
-  long long bad = 0, protected_bad = 0;
-#pragma omp parallel for reduction(+ : total_area, bad_area, bad, protected_bad) reduction(min : min_angle)
+  // What is left bad (classified on the device), and how much of it the small-angle rule
+  // protected.
+  double total_area = 0, min_angle = 180;
+#pragma omp parallel for reduction(+ : total_area) reduction(min : min_angle)
   for (int t = 0; t < nt; ++t) {
     const Point2 &a = out.points[out.triangles[t][0]], &b = out.points[out.triangles[t][1]],
                  &c = out.points[out.triangles[t][2]];
-    const double area = triangle_area(a, b, c);
-    total_area += area;
-    const int k = r2d::classify_triangle(view, t, crit);
-    if (k != r2d::kGood) {
-      ++bad;
-      bad_area += area;
-      if (k == r2d::kBadProtected) ++protected_bad;
-    }
+    total_area += triangle_area(a, b, c);
     double lo, hi;
     triangle_angles(a, b, c, lo, hi);
     min_angle = std::min(min_angle, lo);
   }
+  double bad_area = 0;
+  long long protected_bad = 0;
+  for (const int code : mesh_out.bad) {
+    const auto& tri = out.triangles[code >> 1];
+    bad_area += triangle_area(out.points[tri[0]], out.points[tri[1]], out.points[tri[2]]);
+    protected_bad += code & 1;
+  }
+  const long long bad = static_cast<long long>(mesh_out.bad.size());
   st.output_points = np;
   st.output_triangles = nt;
   st.steiner_points = np - cdt_points;

@@ -235,7 +235,7 @@ void check_buffer() {
       b.resize(size);
       EXPECT_EQ(b.size(), size);
       EXPECT_GE(b.capacity(), size);
-      if (size > cap_before) EXPECT_GE(b.capacity(), cap_before + cap_before / 4) << "growth not geometric";
+      if (size > cap_before) EXPECT_GE(b.capacity(), cap_before + cap_before / 16) << "growth not geometric";
       int* p = b.data();
       Ops<Space>::for_each(s, [=] GDR_HD(long long i) {
         const long long k = static_cast<long long>(old) + i;
@@ -323,27 +323,45 @@ struct PrioInput {
 
 template <class Space>
 void check_priority() {
-  // claim() return codes on one slot, through the space's own kernels.
+  // claim() return codes on one slot, through the space's own kernels. Items 0..3 with
+  // priorities p1, p0 (lower class), p2 (same class and size as p1, larger id), and p1 again
+  // (an exact tie with item 0, broken by the item number).
   {
-    Buffer<Space, u64> slot(1);
+    Buffer<Space, int> slot(1);
     slot.zero();
-    Buffer<Space, int> res(5);
-    u64* s = slot.data();
-    int* r = res.data();
+    Buffer<Space, int> res(7);
     const u64 p1 = exec::make_priority(1, 2.0f, 10);
     const u64 p0 = exec::make_priority(0, 100.0f, 99);
     const u64 p2 = exec::make_priority(1, 2.0f, 11);
+    Buffer<Space, u64> prio;
+    prio.upload(std::vector<u64>{p1, p0, p2, p1});
+    int* s = slot.data();
+    int* r = res.data();
+    const u64* pr = prio.data();
+    auto prio_of = [=] GDR_HD(int k) { return pr[k]; };
     Ops<Space>::for_each(1, [=] GDR_HD(long long) {
-      r[0] = exec::claim(s, p1);  // first: takes it
-      r[1] = exec::claim(s, p1);  // again: already holds it
-      r[2] = exec::claim(s, p0);  // lower class: loses
-      r[3] = exec::claim(s, p2);  // same class and size, larger id: takes it
-      r[4] = exec::claim(s, p1);  // now lower
+      r[0] = exec::claim(s, 0, p1, prio_of);  // first: takes it
+      r[1] = exec::claim(s, 0, p1, prio_of);  // again: already holds it
+      r[2] = exec::claim(s, 1, p0, prio_of);  // lower class: loses
+      r[3] = exec::claim(s, 2, p2, prio_of);  // same class and size, larger id: takes it
+      r[4] = exec::claim(s, 0, p1, prio_of);  // now lower
+      r[5] = exec::held_above(*s, 0, p1, prio_of) ? 1 : 0;
+      r[6] = exec::held_above(*s, 2, p2, prio_of) ? 1 : 0;  // its own mark
     });
     const std::vector<int> got = res.to_host();
-    EXPECT_EQ(got, (std::vector<int>{1, 0, -1, 1, -1}));
-    EXPECT_EQ(slot.get(0), p2);
+    EXPECT_EQ(got, (std::vector<int>{1, 0, -1, 1, -1, 1, 0}));
+    EXPECT_EQ(slot.get(0), 3) << "the mark names item 2 (plus one)";
     EXPECT_EQ(exec::priority_id(p2), 11u);
+    // Equal priorities: the larger item number wins, whichever comes first.
+    Ops<Space>::for_each(1, [=] GDR_HD(long long) {
+      *s = 0;
+      r[0] = exec::claim(s, 3, p1, prio_of);
+      r[1] = exec::claim(s, 0, p1, prio_of);
+      r[2] = exec::claim(s, 0, p1, prio_of);
+    });
+    EXPECT_EQ(res.to_host()[0], 1);
+    EXPECT_EQ(res.to_host()[1], -1);
+    EXPECT_EQ(slot.get(0), 4);
   }
 
   // make_priority: the space computes the same keys as the host, and the order of keys is
@@ -436,21 +454,27 @@ void check_priority() {
       dt.upload(target);
       Buffer<Space, PrioInput> din;
       din.upload(in);
-      Buffer<Space, u64> slots(ns);
+      Buffer<Space, int> slots(ns);
       slots.zero();
+      Buffer<Space, u64> prio(n);
       Buffer<Space, int> res1(n), res2(n);
       const int* t = dt.data();
       const PrioInput* ip = din.data();
-      u64* sl = slots.data();
+      int* sl = slots.data();
+      u64* pr = prio.data();
       int* r1 = res1.data();
       int* r2 = res2.data();
       Ops<Space>::for_each(n, [=] GDR_HD(long long i) {
-        r1[i] = exec::claim(sl + t[i], exec::make_priority(ip[i].klass, ip[i].size, ip[i].id));
+        pr[i] = exec::make_priority(ip[i].klass, ip[i].size, ip[i].id);
+      });
+      auto prio_of = [=] GDR_HD(int k) { return pr[k]; };
+      Ops<Space>::for_each(n, [=] GDR_HD(long long i) {
+        r1[i] = exec::claim(sl + t[i], static_cast<int>(i), pr[i], prio_of);
       });
       Ops<Space>::for_each(n, [=] GDR_HD(long long i) {
-        r2[i] = exec::claim(sl + t[i], exec::make_priority(ip[i].klass, ip[i].size, ip[i].id));
+        r2[i] = exec::claim(sl + t[i], static_cast<int>(i), pr[i], prio_of);
       });
-      const std::vector<u64> got = slots.to_host();
+      const std::vector<int> got = slots.to_host();
       const std::vector<int> h1 = res1.to_host(), h2 = res2.to_host();
 
       std::vector<u64> best(ns, 0);
@@ -462,7 +486,9 @@ void check_priority() {
           winner[target[i]] = static_cast<long long>(i);
         }
       }
-      EXPECT_EQ(first_mismatch(got, best), -1) << "a slot does not hold the maximum priority";
+      std::vector<int> expect(ns, 0);
+      for (std::size_t k = 0; k < ns; ++k) expect[k] = static_cast<int>(winner[k] + 1);
+      EXPECT_EQ(first_mismatch(got, expect), -1) << "a slot does not hold the highest item";
       long long bad1 = 0, bad2 = 0, zeros = 0;
       std::vector<int> survivors(ns, 0);
       for (std::size_t i = 0; i < n; ++i) {
@@ -471,7 +497,7 @@ void check_priority() {
         if (h1[i] == 0 || (h1[i] == -1 && won)) ++bad1;
         if (h2[i] != (won ? 0 : -1)) ++bad2;
         if (h2[i] == 0) ++zeros;
-        if (exec::priority_id(got[target[i]]) == in[i].id) ++survivors[target[i]];
+        if (got[target[i]] == static_cast<int>(i) + 1) ++survivors[target[i]];
       }
       EXPECT_EQ(bad1, 0) << "wrong claim() results in the marking pass";
       EXPECT_EQ(bad2, 0) << "wrong claim() results in the checking pass";
