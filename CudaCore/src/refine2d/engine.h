@@ -82,7 +82,6 @@ void compact_triangles(DeviceMesh<Space>& dm) {
   dm.ntri = live;
   dm.tv.resize(3 * std::size_t(live));
   dm.tn.resize(3 * std::size_t(live));
-  dm.ts.resize(3 * std::size_t(live));
   dm.tflag.resize(live);
   dm.mark.resize(live);
   dm.aux.resize(live);
@@ -142,8 +141,8 @@ struct Engine {
         cb.progress(0.0, "iteration " + std::to_string(iter + 1) + ": " + std::to_string(nl) +
                              " bad elements, " + std::to_string(won) + " points inserted");
       if (trace)
-        std::fprintf(stderr, "gdr-trace iter %d: triangles %d, bad %zu, candidates %zu, won %lld, rounds %d, MB %.1f (peak %.1f)\n",
-                     iter + 1, dm.ntri, nl, ns, won, rounds,
+        std::fprintf(stderr, "gdr-trace iter %d: triangles %d, bad %zu, candidates %zu, won %lld, rounds %d, tuples %zu, MB %.1f (peak %.1f)\n",
+                     iter + 1, dm.ntri, nl, ns, won, rounds, tuples.size(),
                      exec::memory_counter<Space>().current / 1048576.0,
                      exec::memory_counter<Space>().peak / 1048576.0);
       if (res.cap_reached) break;
@@ -174,9 +173,14 @@ struct Engine {
   }
 
   // Line 7, first part (S3): one splitting point per triangle, by priority marks.
+  // When far more elements are bad than can win at once (the first iterations on a coarse
+  // CDT), only a random share of them competes, at most a quarter of the triangle count:
+  // the rest would mostly lose anyway, after growing cavities that cost time and memory.
   std::size_t filter(std::size_t nl) {
     dm.mark.zero();
-    Ops::for_each(nl, ClaimStart{dm.view(), cand_all.data()});
+    const double share = std::min(1.0, (dm.ntri / 4.0 + 4096.0) / static_cast<double>(nl));
+    const u64 keep_below = static_cast<u64>(share * 4294967296.0);
+    Ops::for_each(nl, ClaimStart{dm.view(), cand_all.data(), keep_below});
     const Candidate* ca = cand_all.data();
     const int* mk = dm.mark.data();
     const std::size_t ns = exec::compact_indices<Space>(
@@ -306,7 +310,7 @@ struct Engine {
       int n = 0;
       for (int i = 0; i < 3; ++i) {
         const int nb = mv.tn[3 * t + i];
-        n += mv.ts[3 * t + i] >= 0 && (nb < 0 || nb > 3 * t + i);
+        n += is_subseg(mv, static_cast<int>(t), i) && (nb < 0 || nb > 3 * t + i);
       }
       cnt[t] = n;
     });
@@ -317,10 +321,11 @@ struct Engine {
       int o = 3 * cnt[t];
       for (int i = 0; i < 3; ++i) {
         const int nb = mv.tn[3 * t + i];
-        if (mv.ts[3 * t + i] < 0 || (nb >= 0 && nb < 3 * t + i)) continue;
-        sub[o++] = mv.tv[3 * t + next3(i)];
-        sub[o++] = mv.tv[3 * t + prev3(i)];
-        sub[o++] = mv.ts[3 * t + i];
+        if (!is_subseg(mv, static_cast<int>(t), i) || (nb >= 0 && nb < 3 * t + i)) continue;
+        const int a = mv.tv[3 * t + next3(i)], b = mv.tv[3 * t + prev3(i)];
+        sub[o++] = a;
+        sub[o++] = b;
+        sub[o++] = segment_of(mv, a, b);
       }
     });
     work.to_host(out.subseg);

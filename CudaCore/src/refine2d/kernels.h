@@ -27,6 +27,22 @@ struct Criteria {
 
 GDR_HD_INLINE const double* pt(const MeshView& m, int v) { return m.xy + 2 * v; }
 
+GDR_HD_INLINE bool is_subseg(const MeshView& m, int t, int e) {
+  return (m.tflag[t] & (kSubseg0 << e)) != 0;
+}
+
+// The segment that subsegment ab lies on: that of a segment point among its endpoints, or,
+// between two input vertices, the segment joining them.
+GDR_HD_INLINE int segment_of(const MeshView& m, int a, int b) {
+  if (m.ptype[a] == kSegmentPoint) return m.pseg[a];
+  if (m.ptype[b] == kSegmentPoint) return m.pseg[b];
+  for (int k = m.vseg_begin[a]; k < m.vseg_begin[a + 1]; ++k) {
+    const int s = m.vseg[k];
+    if (m.seg[2 * s] == b || m.seg[2 * s + 1] == b) return s;
+  }
+  return -1;
+}
+
 GDR_HD_INLINE double dist2(const double* a, const double* b) {
   const double dx = a[0] - b[0], dy = a[1] - b[1];
   return dx * dx + dy * dy;
@@ -148,7 +164,7 @@ GDR_HD_INLINE int collect_mask(const MeshView& m, const Criteria& c, int t) {
   if (m.tflag[t] & kDead) return 0;
   int mask = classify_triangle(m, t, c) == kBad ? 8 : 0;
   for (int k = 0; k < 3; ++k) {
-    if (m.ts[3 * t + k] < 0) continue;
+    if (!is_subseg(m, t, k)) continue;
     if (m.tflag[t] & (kSplitEdge0 << k)) {
       mask |= 1 << k;
       continue;
@@ -286,8 +302,8 @@ struct ComputeSplittingPoints {
         cand.prio = exec::make_priority(kClassTriangle, size_class(r2), id);
         return;
       }
-      if (m.ts[3 * u + exit] >= 0 || m.tn[3 * u + exit] < 0) {
-        if (m.ts[3 * u + exit] < 0) return;  // outside an unconstrained boundary: cannot happen
+      if (is_subseg(m, u, exit) || m.tn[3 * u + exit] < 0) {
+        if (!is_subseg(m, u, exit)) return;  // outside an unconstrained boundary: cannot happen
         exec::atomic_or(&m.tflag[u], kSplitEdge0 << exit);
         make_segment_candidate(m, u, exit, kClassWalkSegment, id, cand);
         return;
@@ -298,12 +314,15 @@ struct ComputeSplittingPoints {
 };
 
 // Filter (S3): one splitting point per triangle, by atomic priority marks.
+// Only candidates whose random id is below `keep_below` (of 2^32) compete.
 struct ClaimStart {
   MeshView m;
   const Candidate* cand;
+  u64 keep_below;
   GDR_HD void operator()(long long j) const {
     const Candidate& c = cand[j];
-    if (c.kind >= 0) exec::raise_mark(&m.mark[c.start], static_cast<int>(j), c.prio, PrioOf{cand});
+    if (c.kind >= 0 && exec::priority_id(c.prio) < keep_below)
+      exec::raise_mark(&m.mark[c.start], static_cast<int>(j), c.prio, PrioOf{cand});
   }
 };
 
@@ -372,7 +391,7 @@ struct GrowCavity {
         if (nb >= 0) out[n++] = CavityTuple{h.pt, nb / 3, kForceIn};
         continue;
       }
-      if (m.ts[3 * t + e] >= 0) {
+      if (is_subseg(m, t, e)) {
         // Ruppert: a free point that would encroach a subsegment is not inserted; the
         // subsegment is split first (flagged for the next iteration).
         if (c.kind == 1 && encroaches(pt(m, m.tv[3 * t + next3(e)]), pt(m, m.tv[3 * t + prev3(e)]),
@@ -411,7 +430,7 @@ struct VerifyClaims {
     const double q[2] = {cand[other - 1].x, cand[other - 1].y};
     for (int e = 0; e < 3; ++e) {
       const int nb = m.tn[3 * r + e];
-      if (nb < 0 || m.ts[3 * r + e] >= 0 || m.mark[nb / 3] != h.pt + 1) continue;
+      if (nb < 0 || is_subseg(m, r, e) || m.mark[nb / 3] != h.pt + 1) continue;
       const int c = nb / 3, ce = nb % 3;  // our cavity triangle and its edge on r
       if (pred::incircle(pt(m, m.tv[3 * c + next3(ce)]), pt(m, m.tv[3 * c + prev3(ce)]), p, q) > 0)
         failed[h.pt] = 1;
@@ -462,7 +481,7 @@ struct CheckCavity {
     for (int e = 0; e < 3; ++e) {
       const int k = cavity_edge(m, c, h.pt, t, e);
       if (k == kEdgeInterior) {
-        if (m.ts[3 * t + e] >= 0 && !is_split_edge(m, c, t, e)) failed[h.pt] = 1;
+        if (is_subseg(m, t, e) && !is_split_edge(m, c, t, e)) failed[h.pt] = 1;
       } else if (k == kEdgeFan) {
         if (pred::orient2d(pt(m, m.tv[3 * t + next3(e)]), pt(m, m.tv[3 * t + prev3(e)]), p) <= 0)
           failed[h.pt] = 1;
@@ -517,11 +536,10 @@ struct CreateFan {
     if (h.state != kTupleCavity || failed[h.pt]) return;
     const Candidate& c = cand[h.pt];
     const int t = h.tri, p = point_id[h.pt];
-    int split_a = -1, split_b = -1, split_seg = -1;
+    int split_a = -1, split_b = -1;
     if (c.kind == 0) {
       split_a = m.tv[3 * c.start + next3(c.ek)];
       split_b = m.tv[3 * c.start + prev3(c.ek)];
-      split_seg = m.ts[3 * c.start + c.ek];
     }
     int r = 0;
     for (int e = 0; e < 3; ++e) {
@@ -531,9 +549,6 @@ struct CreateFan {
       m.tv[3 * nt] = x;
       m.tv[3 * nt + 1] = y;
       m.tv[3 * nt + 2] = p;
-      m.ts[3 * nt + 2] = m.ts[3 * t + e];
-      m.ts[3 * nt] = (y == split_a || y == split_b) ? split_seg : -1;
-      m.ts[3 * nt + 1] = (x == split_a || x == split_b) ? split_seg : -1;
       const int outer = m.tn[3 * t + e];
       if (outer >= 0 && (m.tflag[outer / 3] & kInCavity)) {
         // Another winner's cavity is across: link to its new triangle on this edge (it
@@ -546,7 +561,12 @@ struct CreateFan {
       }
       m.tn[3 * nt] = -1;
       m.tn[3 * nt + 1] = -1;
-      m.tflag[nt] = (m.tflag[t] & (kSplitEdge0 << e)) ? (kSplitEdge0 << 2) : 0;
+      // The fan edge keeps its flags; the edges at p are halves of a split subsegment.
+      int flags = (m.tflag[t] & (kSplitEdge0 << e)) ? (kSplitEdge0 << 2) : 0;
+      if (is_subseg(m, t, e)) flags |= kSubseg0 << 2;
+      if (y == split_a || y == split_b) flags |= kSubseg0;
+      if (x == split_a || x == split_b) flags |= kSubseg0 << 1;
+      m.tflag[nt] = flags;
       m.mark[nt] = 0;
     }
   }
@@ -616,7 +636,10 @@ struct WritePoints {
     m.xy[2 * p] = c.x;
     m.xy[2 * p + 1] = c.y;
     m.ptype[p] = c.kind == 0 ? kSegmentPoint : kFreePoint;
-    m.pseg[p] = c.kind == 0 ? m.ts[3 * c.start + c.ek] : -1;
+    // The split subsegment's triangle is dead by now but keeps its vertices until compaction.
+    m.pseg[p] = c.kind == 0 ? segment_of(m, m.tv[3 * c.start + next3(c.ek)],
+                                         m.tv[3 * c.start + prev3(c.ek)])
+                            : -1;
   }
 };
 
@@ -634,7 +657,6 @@ struct MoveTriangles {
     const int d = destination(s);
     for (int e = 0; e < 3; ++e) {
       m.tv[3 * d + e] = m.tv[3 * s + e];
-      m.ts[3 * d + e] = m.ts[3 * s + e];
       const int nb = m.tn[3 * s + e];
       m.tn[3 * d + e] = nb < 0 ? -1 : 3 * destination(nb / 3) + nb % 3;
     }

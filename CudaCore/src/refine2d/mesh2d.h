@@ -3,8 +3,10 @@
 // Triangle t has vertices tv[3t..3t+2] (counter-clockwise). Edge i of t joins
 // tv[3t+(i+1)%3] and tv[3t+(i+2)%3]; it is opposite vertex i. tn[3t+i] is the neighbour
 // across edge i encoded as 3*t'+i' (so back-pointers are O(1)), or -1 on the domain
-// boundary. ts[3t+i] is the segment that edge i lies on (index into the segment table:
-// input segments first, then convex-hull edges), or -1 for an unconstrained edge.
+// boundary. On the host, ts[3t+i] is the segment that edge i lies on (index into the segment
+// table: input segments first, then convex-hull edges), or -1 for an unconstrained edge. On
+// the device one flag bit per edge says "subsegment" instead (12 bytes less per triangle);
+// the segment follows from the edge's endpoints when needed (kernels.h, segment_of).
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -23,6 +25,8 @@ enum : int {
                      // circumcentre encroached it, or a walk ran into it)
   kCollectShift = 5,  // bits 5-8: this iteration's collect mask (kernels.h, collect_mask)
   kCollectBits = 15 << kCollectShift,
+  kSubseg0 = 1 << 9,  // edge i (bit 9+i) lies on a segment
+  kSubsegBits = 7 << 9,
 };
 
 // Per-point types (same values as gdr::PointType).
@@ -60,11 +64,12 @@ struct MeshView {
   int* pseg;
   int* tv;
   int* tn;
-  int* ts;
   int* tflag;
   int* mark;  // cavity claims: candidate + 1 (exec/priority.h)
   int* aux;
   const int* seg;
+  const int* vseg_begin;  // segments at input vertex v: vseg[vseg_begin[v] .. vseg_begin[v+1])
+  const int* vseg;
   int ntri;
   int npts;
 };
@@ -76,16 +81,17 @@ struct DeviceMesh {
   Buf<double> xy;
   Buf<std::uint8_t> ptype;
   Buf<int> pseg;
-  Buf<int> tv, tn, ts;
+  Buf<int> tv, tn;
   Buf<int> tflag;
   Buf<int> mark;  // priority marks (S3 filter, cavity claims)
   Buf<int> aux;         // scratch per triangle (new-triangle slot base during insertion)
-  Buf<int> seg;
+  Buf<int> seg, vseg_begin, vseg;
   int ntri = 0, npts = 0;
 
   MeshView view() {
-    return MeshView{xy.data(), ptype.data(), pseg.data(), tv.data(),  tn.data(),  ts.data(),
-                    tflag.data(), mark.data(), aux.data(), seg.data(), ntri, npts};
+    return MeshView{xy.data(),   ptype.data(), pseg.data(), tv.data(),         tn.data(),
+                    tflag.data(), mark.data(), aux.data(), seg.data(),        vseg_begin.data(),
+                    vseg.data(),  ntri,        npts};
   }
 
   void upload(const HostMesh& h) {
@@ -96,13 +102,36 @@ struct DeviceMesh {
     pseg.upload(h.pseg);
     tv.upload(h.tv);
     tn.upload(h.tn);
-    ts.upload(h.ts);
     seg.upload(h.seg);
+    upload_segments_at_vertices(h);
+    Buf<int> ts;
+    ts.upload(h.ts);
     tflag.resize_discard(ntri);
-    tflag.zero();
+    int* f = tflag.data();
+    const int* s = ts.data();
+    exec::Ops<Space>::for_each(ntri, [=] GDR_HD(long long t) {
+      int bits = 0;
+      for (int i = 0; i < 3; ++i)
+        if (s[3 * t + i] >= 0) bits |= kSubseg0 << i;
+      f[t] = bits;
+    });
     mark.resize_discard(ntri);
     mark.zero();
     aux.resize_discard(ntri);
+  }
+
+  // Segments at each input vertex (all endpoints are input vertices), to name the segment of
+  // a subsegment that joins two input vertices.
+  void upload_segments_at_vertices(const HostMesh& h) {
+    const int ns = static_cast<int>(h.seg.size() / 2);
+    std::vector<int> begin(std::size_t(npts) + 1, 0), list(h.seg.size());
+    for (int v : h.seg) ++begin[v + 1];
+    for (int v = 0; v < npts; ++v) begin[v + 1] += begin[v];
+    std::vector<int> fill(begin.begin(), begin.end() - 1);
+    for (int s = 0; s < ns; ++s)
+      for (int k = 0; k < 2; ++k) list[fill[h.seg[2 * s + k]]++] = s;
+    vseg_begin.upload(begin);
+    vseg.upload(list);
   }
 
   // Room for `tris` triangles and `pts` points, keeping contents.
@@ -110,7 +139,6 @@ struct DeviceMesh {
     if (tris > ntri) {
       tv.resize(3 * std::size_t(tris));
       tn.resize(3 * std::size_t(tris));
-      ts.resize(3 * std::size_t(tris));
       tflag.resize(tris);
       mark.resize(tris);
       aux.resize(tris);

@@ -38,6 +38,29 @@ std::vector<Point2> square(double x0, double y0, double x1, double y1) {
   return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
 }
 
+// Subsegments whose reported input segment does not hold both their endpoints (split points
+// are rounded, so "on" is up to a relative 1e-9; this checks labels, not topology).
+int mislabelled_subsegments(const gdr::TriMesh& m, const Pslg& g) {
+  int bad = 0;
+  for (std::size_t k = 0; k < m.subsegments.size(); ++k) {
+    const int s = m.subsegment_source[k];
+    if (s < 0) continue;
+    if (s >= static_cast<int>(g.segments.size())) {
+      ++bad;
+      continue;
+    }
+    const Point2 a = g.points[g.segments[s][0]], b = g.points[g.segments[s][1]];
+    const double len = std::hypot(b.x - a.x, b.y - a.y);
+    for (int v : m.subsegments[k]) {
+      const Point2 p = m.points[v];
+      const double cross = (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);
+      const double along = ((p.x - a.x) * (b.x - a.x) + (p.y - a.y) * (b.y - a.y)) / (len * len);
+      if (std::fabs(cross) > 1e-9 * len * len || along < -1e-9 || along > 1 + 1e-9) ++bad;
+    }
+  }
+  return bad;
+}
+
 class Refine2d : public ::testing::TestWithParam<Backend> {
  protected:
   void SetUp() override {
@@ -64,6 +87,7 @@ class Refine2d : public ::testing::TestWithParam<Backend> {
     EXPECT_EQ(rep.missing_points, 0u);
     EXPECT_EQ(rep.missing_segments, 0u);
     EXPECT_EQ(rep.non_delaunay, 0u);
+    if (check_input) EXPECT_EQ(mislabelled_subsegments(r.mesh, g), 0);
     const auto& s = r.stats;
     EXPECT_EQ(s.output_triangles, static_cast<long long>(r.mesh.triangles.size()));
     EXPECT_EQ(s.output_points, static_cast<long long>(r.mesh.points.size()));
