@@ -80,6 +80,19 @@ ExpandListResult expand_list(Buffer<Space, Tuple>& H, std::size_t initial, Step 
     if (r.rounds >= limits.max_rounds ||
         (r.rounds >= limits.defer_after_rounds && right - left < limits.defer_below))
       break;
+    if constexpr (Ops<Space>::is_gpu) {
+      // Small windows (the long tails of big cavities) run their rounds inside one block.
+      constexpr std::size_t kSmallWindow = 4096, kRoom = std::size_t(1) << 16;
+      if (right - left <= kSmallWindow) {
+        H.resize(right + kRoom);
+        const std::size_t before = left;
+        Ops<Space>::template small_rounds<K>(H.data(), left, right, right + kRoom, step, r.rounds,
+                                             limits.max_rounds, limits.defer_after_rounds,
+                                             limits.defer_below, kSmallWindow);
+        H.resize(right);
+        if (left != before) continue;  // otherwise no round fitted: one round the normal way
+      }
+    }
     const std::size_t w = right - left;
     stage.resize_discard(w * K);
     count.resize_discard(w);

@@ -3,6 +3,7 @@
 #pragma once
 #include <cuda_runtime.h>
 
+#include <cub/block/block_scan.cuh>
 #include <cub/device/device_scan.cuh>
 #include <algorithm>
 #include <cstring>
@@ -28,6 +29,48 @@ __global__ void for_each_kernel(long long n, F f) {
   long long i = blockIdx.x * (long long)blockDim.x + threadIdx.x;
   if (i < n) f(i);
 }
+// ExpandList rounds on small windows, all in one block: a round needs no launch and no
+// host round trip (cavities' long tails take hundreds of such rounds). io = {left, right,
+// rounds}; stops where the host loop would (limits), when the window outgrows one block's
+// share of work, or when H's capacity might not hold the next round.
+constexpr int kSmallRoundThreads = 1024;
+
+template <int K, class Tuple, class Step>
+__global__ void __launch_bounds__(kSmallRoundThreads)
+small_rounds_kernel(Tuple* H, long long* io, long long cap, Step step, int max_rounds,
+                    int defer_after_rounds, long long defer_below, long long max_window) {
+  using BlockScan = cub::BlockScan<int, kSmallRoundThreads>;
+  __shared__ typename BlockScan::TempStorage scan_storage;
+  long long left = io[0], right = io[1];
+  int rounds = static_cast<int>(io[2]);
+  for (;;) {  // every thread holds the same left/right/rounds: the exits are uniform
+    const long long w = right - left;
+    if (w == 0 || w > max_window || right + w * K > cap || rounds >= max_rounds ||
+        (rounds >= defer_after_rounds && w < defer_below))
+      break;
+    long long added = 0;
+    for (long long c = 0; c < w; c += kSmallRoundThreads) {
+      const long long j = c + threadIdx.x;
+      Tuple out[K];
+      int n = 0;
+      if (j < w) n = step(left + j, H[left + j], out);
+      int offset, total;
+      BlockScan(scan_storage).ExclusiveSum(n, offset, total);
+      for (int k = 0; k < n; ++k) H[right + added + offset + k] = out[k];
+      added += total;
+      __syncthreads();  // scan storage reuse; this chunk's writes visible to the block
+    }
+    left = right;
+    right += added;
+    ++rounds;
+  }
+  if (threadIdx.x == 0) {
+    io[0] = left;
+    io[1] = right;
+    io[2] = rounds;
+  }
+}
+
 }  // namespace detail
 
 template <>
@@ -135,6 +178,30 @@ struct Ops<Cuda> {
     const long long grid = (static_cast<long long>(n) + block - 1) / block;
     detail::for_each_kernel<<<static_cast<unsigned>(grid), block>>>(static_cast<long long>(n), f);
     detail::cuda_check(cudaGetLastError(), "kernel launch");
+  }
+
+  // See detail::small_rounds_kernel. Updates left, right and rounds.
+  template <int K, class Tuple, class Step>
+  static void small_rounds(Tuple* H, std::size_t& left, std::size_t& right, std::size_t cap,
+                           const Step& step, int& rounds, int max_rounds, int defer_after_rounds,
+                           std::size_t defer_below, std::size_t max_window) {
+    static long long* dio = [] {  // {left, right, rounds} on the device
+      void* p = nullptr;
+      detail::cuda_check(cudaMalloc(&p, 3 * sizeof(long long)), "small rounds");
+      return static_cast<long long*>(p);
+    }();
+    const long long host_io[3] = {static_cast<long long>(left), static_cast<long long>(right), rounds};
+    detail::cuda_check(cudaMemcpy(dio, host_io, sizeof host_io, cudaMemcpyHostToDevice),
+                       "small rounds");
+    detail::small_rounds_kernel<K><<<1, detail::kSmallRoundThreads>>>(
+        H, dio, static_cast<long long>(cap), step, max_rounds, defer_after_rounds,
+        static_cast<long long>(defer_below), static_cast<long long>(max_window));
+    detail::cuda_check(cudaGetLastError(), "small rounds launch");
+    long long back[3];
+    detail::cuda_check(cudaMemcpy(back, dio, sizeof back, cudaMemcpyDeviceToHost), "small rounds");
+    left = static_cast<std::size_t>(back[0]);
+    right = static_cast<std::size_t>(back[1]);
+    rounds = static_cast<int>(back[2]);
   }
 
   template <class T>

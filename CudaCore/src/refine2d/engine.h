@@ -302,7 +302,17 @@ struct Engine {
   // neighbour nor segment links, so they are not copied.
   void download(MeshResult& out) {
     clock.restart();
+    auto t0 = std::chrono::steady_clock::now();
+    auto stamp = [&](const char* what) {  // sub-phases, for GDR_TRACE
+      if (!trace) return;
+      Ops::synchronize();
+      const auto now = std::chrono::steady_clock::now();
+      std::fprintf(stderr, "gdr-trace download %s: %.4f s\n", what,
+                   std::chrono::duration<double>(now - t0).count());
+      t0 = now;
+    };
     detail::compact_triangles(dm);
+    stamp("compact");
     const MeshView mv = dm.view();
     const Criteria crit = params.criteria;
     int* cnt = dm.aux.data();
@@ -328,7 +338,9 @@ struct Engine {
         sub[o++] = segment_of(mv, a, b);
       }
     });
+    stamp("subsegment list");
     work.to_host(out.subseg);
+    stamp("subsegment copy");
     Ops::for_each(dm.ntri, [=] GDR_HD(long long t) {
       mv.tflag[t] = classify_triangle(mv, static_cast<int>(t), crit);
       cnt[t] = mv.tflag[t] != kGood;
@@ -343,11 +355,14 @@ struct Engine {
         bad[cnt[t]] = 2 * static_cast<int>(t) + (mv.tflag[t] == kBadProtected);
     });
     list.to_host(out.bad);
+    stamp("bad triangles");
     dm.xy.resize(2 * std::size_t(dm.npts));
     dm.ptype.resize(dm.npts);
     dm.xy.to_host(out.xy);
+    stamp("point copy");
     dm.ptype.to_host(out.ptype);
     dm.tv.to_host(out.tv);
+    stamp("triangle copy");
     clock.template stop<Space>("download");
   }
 };
