@@ -61,6 +61,7 @@ struct ExpandListLimits {
   int max_rounds = 1 << 20;       // hard stop; the rest is deferred
   int defer_after_rounds = 1 << 20;  // from this round on, stop when the window is small...
   std::size_t defer_below = 0;    // ...i.e. has fewer tuples than this (S5)
+  bool block_rounds = true;       // GPU: small windows run their rounds inside one block
 };
 
 // ExpandList (Algorithm 4). H[0, initial) is the first operation window. Each round applies
@@ -83,7 +84,7 @@ ExpandListResult expand_list(Buffer<Space, Tuple>& H, std::size_t initial, Step 
     if constexpr (Ops<Space>::is_gpu) {
       // Small windows (the long tails of big cavities) run their rounds inside one block.
       constexpr std::size_t kSmallWindow = 4096, kRoom = std::size_t(1) << 16;
-      if (right - left <= kSmallWindow) {
+      if (limits.block_rounds && right - left <= kSmallWindow) {
         H.resize(right + kRoom);
         const std::size_t before = left;
         Ops<Space>::template small_rounds<K>(H.data(), left, right, right + kRoom, step, r.rounds,

@@ -16,10 +16,22 @@
 
 namespace gdr::r2d {
 
+// The paper's design strategies and two of ours, each of which can be switched off to measure
+// what it buys (benchmarks only: GDR_DISABLE, see refine2d.cpp).
+struct Strategies {
+  bool compaction = true;    // S1: compact dead triangles during refinement, not only at the end
+  bool filtering = true;     // S3: one splitting point per triangle before growing cavities
+  bool irregular = true;     // S4: encroached subsegments and bad triangles in one list
+  bool deferment = true;     // S5: defer cavities still growing after a few rounds
+  bool touching = true;      // cavities that touch go in together when the mesh stays Delaunay
+  bool block_rounds = true;  // small ExpandList windows run their rounds inside one GPU block
+};
+
 struct EngineParams {
   Criteria criteria;
   long long max_steiner = -1;  // -1: unlimited
   int max_iterations = 100000;
+  Strategies strategies;
 };
 
 struct EngineResult {
@@ -180,12 +192,24 @@ struct Engine {
     dm.mark.zero();
     const double share = std::min(1.0, (dm.ntri / 4.0 + 4096.0) / static_cast<double>(nl));
     const u64 keep_below = static_cast<u64>(share * 4294967296.0);
-    Ops::for_each(nl, ClaimStart{dm.view(), cand_all.data(), keep_below});
+    const Strategies& sg = params.strategies;
     const Candidate* ca = cand_all.data();
     const int* mk = dm.mark.data();
+    if (sg.filtering) Ops::for_each(nl, ClaimStart{dm.view(), cand_all.data(), keep_below});
+    // Without S4, subsegments are split in iterations of their own, before any triangle.
+    bool segments_only = false;
+    if (!sg.irregular)
+      segments_only = exec::compact_indices<Space>(
+                          nl, [=] GDR_HD(long long j) { return ca[j].kind == 0; }, list, count) > 0;
+    const bool filtering = sg.filtering;
     const std::size_t ns = exec::compact_indices<Space>(
-        nl, [=] GDR_HD(long long j) { return ca[j].kind >= 0 && mk[ca[j].start] == j + 1; }, list,
-        count);
+        nl,
+        [=] GDR_HD(long long j) {
+          const Candidate& c = ca[j];
+          if (c.kind < 0 || (segments_only && c.kind != 0)) return false;
+          return filtering ? mk[c.start] == j + 1 : exec::priority_id(c.prio) < keep_below;
+        },
+        list, count);
     cand.resize_discard(ns);
     Candidate* cs = cand.data();
     const int* sel = list.data();
@@ -220,10 +244,11 @@ struct Engine {
         tp[cnt[j] + 1] = CavityTuple{static_cast<int>(j), mv.tn[3 * c.start + c.ek] / 3, kForceIn};
     });
     exec::ExpandListLimits lim;
-    if (allow_deferment) {
+    if (allow_deferment && params.strategies.deferment) {
       lim.defer_after_rounds = 16;
       lim.defer_below = ns / 64 + 32;
     }
+    lim.block_rounds = params.strategies.block_rounds;
     const exec::ExpandListResult er = exec::expand_list<Space, 3>(
         tuples, n0, GrowCavity{dm.view(), cand.data(), failed.data(), params.criteria.chew}, lim);
     // Deferred cavities must finish next time, or big ones would block their neighbourhood
@@ -243,7 +268,8 @@ struct Engine {
   // Steiner cap drops the surplus: winners are independent). Returns how many won.
   long long verify_and_number(std::size_t ns) {
     const std::size_t nt = tuples.size();
-    Ops::for_each(nt, VerifyClaims{dm.view(), cand.data(), tuples.data(), failed.data()});
+    Ops::for_each(nt, VerifyClaims{dm.view(), cand.data(), tuples.data(), failed.data(),
+                                   params.strategies.touching});
     Ops::for_each(nt, SetInCavity{dm.view(), cand.data(), tuples.data(), failed.data(), 1});
     Ops::for_each(nt, CheckCavity{dm.view(), cand.data(), tuples.data(), failed.data()});
     Ops::for_each(nt, SetInCavity{dm.view(), cand.data(), tuples.data(), failed.data(), 0});
@@ -290,7 +316,7 @@ struct Engine {
     res.inserted += won;
     clock.template stop<Space>("insert");
     dead += std::max<long long>(0, new_tris - 2 * won);
-    if (10 * dead > dm.ntri) {
+    if (params.strategies.compaction && 10 * dead > dm.ntri) {
       detail::compact_triangles(dm);
       dead = 0;
     }

@@ -159,31 +159,38 @@ GDR_HD_INLINE void segment_split_point(const MeshView& m, int va, int vb, double
 
 // ---------------------------------------------------------------------------------------
 // Collect (Algorithm 1 line 3, S4): per triangle a 4-bit mask; bits 0-2 are its edges as
-// encroached subsegments, bit 3 the triangle itself when it is bad.
-GDR_HD_INLINE int collect_mask(const MeshView& m, const Criteria& c, int t) {
-  if (m.tflag[t] & kDead) return 0;
+// encroached subsegments, bit 3 the triangle itself when it is bad. Whether a triangle is bad
+// and whether its apexes encroach its subsegments never change while it lives, so that part
+// is computed once, when the triangle is new (kFresh), and kept in its flags; edges flagged
+// for splitting since are added each time.
+GDR_HD_INLINE int static_collect_mask(const MeshView& m, const Criteria& c, int t) {
   int mask = classify_triangle(m, t, c) == kBad ? 8 : 0;
   for (int k = 0; k < 3; ++k) {
     if (!is_subseg(m, t, k)) continue;
-    if (m.tflag[t] & (kSplitEdge0 << k)) {
-      mask |= 1 << k;
-      continue;
-    }
     const int a = m.tv[3 * t + next3(k)], b = m.tv[3 * t + prev3(k)], apex = m.tv[3 * t + k];
     if (encroaches(pt(m, a), pt(m, b), pt(m, apex), c.chew)) mask |= 1 << k;
   }
   return mask;
 }
 
-// The mask goes to the triangle's flag bits and its number of entries to aux, which the
-// engine scans in place into list offsets (no per-triangle arrays beyond the mesh's own).
+GDR_HD_INLINE int collect_mask(int flags) {
+  if (flags & kDead) return 0;
+  return ((flags & kCollectBits) >> kCollectShift) | ((flags / kSplitEdge0) & 7);
+}
+
+// The mask's entry count goes to aux, which the engine scans in place into list offsets (no
+// per-triangle arrays beyond the mesh's own).
 struct CollectMask {
   MeshView m;
   Criteria c;
   GDR_HD void operator()(long long i) const {
     const int t = static_cast<int>(i);
-    const int mask = collect_mask(m, c, t);
-    m.tflag[t] = (m.tflag[t] & ~kCollectBits) | (mask << kCollectShift);
+    int f = m.tflag[t];
+    if ((f & kFresh) && !(f & kDead)) {
+      f = (f & ~(kFresh | kCollectBits)) | (static_collect_mask(m, c, t) << kCollectShift);
+      m.tflag[t] = f;
+    }
+    const int mask = collect_mask(f);
     m.aux[t] = (mask & 1) + ((mask >> 1) & 1) + ((mask >> 2) & 1) + ((mask >> 3) & 1);
   }
 };
@@ -194,7 +201,7 @@ struct ExpandElements {
   int* list;
   GDR_HD void operator()(long long i) const {
     const int t = static_cast<int>(i);
-    const int mask = (m.tflag[t] & kCollectBits) >> kCollectShift;
+    const int mask = collect_mask(m.tflag[t]);
     int o = m.aux[t];
     for (int k = 0; k < 4; ++k)
       if (mask & (1 << k)) list[o++] = 4 * t + k;
@@ -420,12 +427,17 @@ struct VerifyClaims {
   const Candidate* cand;
   const CavityTuple* tuples;
   int* failed;
+  bool touching;  // false: any contact with a higher cavity drops this point
   GDR_HD void operator()(long long i) const {
     const CavityTuple& h = tuples[i];
     if (h.state == kTupleCavity && m.mark[h.tri] != h.pt + 1) failed[h.pt] = 1;
     if (h.state != kTupleRing) return;
     const int r = h.tri, other = m.mark[r];
     if (!exec::held_above(other, h.pt, cand[h.pt].prio, PrioOf{cand})) return;
+    if (!touching) {
+      failed[h.pt] = 1;
+      return;
+    }
     const double p[2] = {cand[h.pt].x, cand[h.pt].y};
     const double q[2] = {cand[other - 1].x, cand[other - 1].y};
     for (int e = 0; e < 3; ++e) {
@@ -566,7 +578,7 @@ struct CreateFan {
       if (is_subseg(m, t, e)) flags |= kSubseg0 << 2;
       if (y == split_a || y == split_b) flags |= kSubseg0;
       if (x == split_a || x == split_b) flags |= kSubseg0 << 1;
-      m.tflag[nt] = flags;
+      m.tflag[nt] = flags | kFresh;
       m.mark[nt] = 0;
     }
   }

@@ -23,10 +23,11 @@ enum : int {
   kInCavity = 2u,    // part of a winning cavity during insertion
   kSplitEdge0 = 4u,  // edge i (bit 2+i) is a subsegment that must be split (a rejected
                      // circumcentre encroached it, or a walk ran into it)
-  kCollectShift = 5,  // bits 5-8: this iteration's collect mask (kernels.h, collect_mask)
+  kCollectShift = 5,  // bits 5-8: the triangle's own collect mask (kernels.h, collect_mask)
   kCollectBits = 15 << kCollectShift,
   kSubseg0 = 1 << 9,  // edge i (bit 9+i) lies on a segment
   kSubsegBits = 7 << 9,
+  kFresh = 1 << 12,   // new triangle: its collect bits are not computed yet
 };
 
 // Per-point types (same values as gdr::PointType).
@@ -110,7 +111,7 @@ struct DeviceMesh {
     int* f = tflag.data();
     const int* s = ts.data();
     exec::Ops<Space>::for_each(ntri, [=] GDR_HD(long long t) {
-      int bits = 0;
+      int bits = kFresh;
       for (int i = 0; i < 3; ++i)
         if (s[3 * t + i] >= 0) bits |= kSubseg0 << i;
       f[t] = bits;

@@ -4,7 +4,10 @@
 //   3. convert back and measure what is left bad.
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <new>
+#include <sstream>
+#include <string>
 
 #include "exec/space.h"
 #include "gdr/refine2d.h"
@@ -31,6 +34,28 @@ r2d::Criteria make_criteria(const Refine2dOptions& o) {
   }
   c.chew = o.mode == EncroachMode::Chew ? 1 : 0;
   return c;
+}
+
+// Design strategies switched off for a measurement: GDR_DISABLE=s1,s3,s4,s5,touching,block_rounds
+// (benchmarks only; see Benchmarks/README.md).
+r2d::Strategies strategies_from_environment() {
+  r2d::Strategies s;
+  const char* env = std::getenv("GDR_DISABLE");
+  if (!env) return s;
+  std::stringstream list(env);
+  std::string name;
+  while (std::getline(list, name, ',')) {
+    if (name == "s1") s.compaction = false;
+    else if (name == "s3") s.filtering = false;
+    else if (name == "s4") s.irregular = false;
+    else if (name == "s5") s.deferment = false;
+    else if (name == "touching") s.touching = false;
+    else if (name == "block_rounds") s.block_rounds = false;
+    else if (!name.empty())
+      throw Error(Status::InvalidInput, "GDR_DISABLE: unknown strategy '" + name +
+                                            "' (known: s1, s3, s4, s5, touching, block_rounds)");
+  }
+  return s;
 }
 
 // Rough output size, to let Auto choose the CPU for small jobs.
@@ -83,6 +108,7 @@ Refine2dResult refine_2d(const Pslg& input, const Refine2dOptions& options, cons
   r2d::EngineParams params;
   params.criteria = crit;
   params.max_steiner = options.max_steiner_points;
+  params.strategies = strategies_from_environment();
   if (!options.refine) params.max_iterations = 0;
   Callbacks engine_cb = cb;
   if (cb.progress)  // iterations have no known total: report a slowly saturating fraction

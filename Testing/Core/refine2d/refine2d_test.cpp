@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <random>
 
@@ -187,6 +188,33 @@ TEST_P(Refine2d, ConcentricPolygonsAndRefineAgainAddsNothing) {
   auto r2 = mesh(again, o);
   EXPECT_EQ(r2.stats.steiner_points, 0);
   EXPECT_EQ(r2.mesh.triangles.size(), r.mesh.triangles.size());
+}
+
+// The benchmark's strategy switches (GDR_DISABLE) change how the work is scheduled, never
+// the guarantees: with any one of them off, the mesh still validates and meets the bound.
+TEST_P(Refine2d, EachStrategySwitchedOffStillGivesAValidMesh) {
+  Pslg g;
+  for (int k = 1; k <= 3; ++k) add_loop(g, regular_polygon(5 + 7 * k, k, 0, 0, 0.3 * k));
+  add_loop(g, square(-4, -4, 4, 4));
+  auto o = options();
+  o.min_angle = 28;
+  o.max_edge_length = 0.3;
+  for (const char* name : {"s1", "s3", "s4", "s5", "touching", "block_rounds", "s1,s3,s4,s5,touching"}) {
+    SCOPED_TRACE(std::string("GDR_DISABLE=") + name);
+    setenv("GDR_DISABLE", name, 1);
+    auto r = mesh(g, o);
+    EXPECT_GT(r.stats.steiner_points, 500);
+    EXPECT_EQ(r.stats.bad_triangles, 0);
+  }
+  setenv("GDR_DISABLE", "s2", 1);
+  try {
+    gdr::refine_2d(g, o);
+    ADD_FAILURE() << "an unknown strategy name was accepted";
+  } catch (const gdr::Error& e) {
+    EXPECT_EQ(e.status(), gdr::Status::InvalidInput);
+    EXPECT_NE(std::string(e.what()).find("'s2'"), std::string::npos) << e.what();
+  }
+  unsetenv("GDR_DISABLE");
 }
 
 TEST_P(Refine2d, GridOfCocircularPoints) {
