@@ -1,6 +1,7 @@
 // Reusable parallel building blocks on top of Ops<Space>: fill, stream compaction (S1) and
 // the tuple-based ExpandList loop (paper, Algorithm 4; S2 regularization, S5 deferment).
 #pragma once
+#include <algorithm>
 #include <cstddef>
 
 #include "exec/buffer.h"
@@ -83,11 +84,15 @@ ExpandListResult expand_list(Buffer<Space, Tuple>& H, std::size_t initial, Step 
       break;
     if constexpr (Ops<Space>::is_gpu) {
       // Small windows (the long tails of big cavities) run their rounds inside one block.
-      constexpr std::size_t kSmallWindow = 4096, kRoom = std::size_t(1) << 16;
+      // Room for the rounds' new tuples: several rounds' worth, at most a fraction of H (small
+      // problems stay small in memory).
+      constexpr std::size_t kSmallWindow = 4096;
       if (limits.block_rounds && right - left <= kSmallWindow) {
-        H.resize(right + kRoom);
+        const std::size_t room = std::clamp<std::size_t>(right / 2, 4 * K * (right - left),
+                                                         std::size_t(1) << 16);
+        H.resize(right + room);
         const std::size_t before = left;
-        Ops<Space>::template small_rounds<K>(H.data(), left, right, right + kRoom, step, r.rounds,
+        Ops<Space>::template small_rounds<K>(H.data(), left, right, right + room, step, r.rounds,
                                              limits.max_rounds, limits.defer_after_rounds,
                                              limits.defer_below, kSmallWindow);
         H.resize(right);

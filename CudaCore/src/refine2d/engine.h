@@ -190,17 +190,22 @@ struct Engine {
   // the rest would mostly lose anyway, after growing cavities that cost time and memory.
   std::size_t filter(std::size_t nl) {
     dm.mark.zero();
-    const double share = std::min(1.0, (dm.ntri / 4.0 + 4096.0) / static_cast<double>(nl));
-    const u64 keep_below = static_cast<u64>(share * 4294967296.0);
     const Strategies& sg = params.strategies;
     const Candidate* ca = cand_all.data();
     const int* mk = dm.mark.data();
-    if (sg.filtering) Ops::for_each(nl, ClaimStart{dm.view(), cand_all.data(), keep_below});
     // Without S4, subsegments are split in iterations of their own, before any triangle.
+    std::size_t pool = nl;
     bool segments_only = false;
-    if (!sg.irregular)
-      segments_only = exec::compact_indices<Space>(
-                          nl, [=] GDR_HD(long long j) { return ca[j].kind == 0; }, list, count) > 0;
+    if (!sg.irregular) {
+      const std::size_t nseg = exec::compact_indices<Space>(
+          nl, [=] GDR_HD(long long j) { return ca[j].kind == 0; }, list, count);
+      segments_only = nseg > 0;
+      if (segments_only) pool = nseg;
+    }
+    const double share = std::min(1.0, (dm.ntri / 4.0 + 4096.0) / static_cast<double>(pool));
+    const u64 keep_below = static_cast<u64>(share * 4294967296.0);
+    if (sg.filtering)
+      Ops::for_each(nl, ClaimStart{dm.view(), cand_all.data(), keep_below, segments_only});
     const bool filtering = sg.filtering;
     const std::size_t ns = exec::compact_indices<Space>(
         nl,

@@ -321,14 +321,16 @@ struct ComputeSplittingPoints {
 };
 
 // Filter (S3): one splitting point per triangle, by atomic priority marks.
-// Only candidates whose random id is below `keep_below` (of 2^32) compete.
+// Only candidates whose random id is below `keep_below` (of 2^32) compete, and only
+// subsegment splits when `segments_only`.
 struct ClaimStart {
   MeshView m;
   const Candidate* cand;
   u64 keep_below;
+  bool segments_only;
   GDR_HD void operator()(long long j) const {
     const Candidate& c = cand[j];
-    if (c.kind >= 0 && exec::priority_id(c.prio) < keep_below)
+    if (c.kind >= 0 && (c.kind == 0 || !segments_only) && exec::priority_id(c.prio) < keep_below)
       exec::raise_mark(&m.mark[c.start], static_cast<int>(j), c.prio, PrioOf{cand});
   }
 };

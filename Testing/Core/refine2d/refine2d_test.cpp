@@ -198,12 +198,12 @@ TEST_P(Refine2d, EachStrategySwitchedOffStillGivesAValidMesh) {
   add_loop(g, square(-4, -4, 4, 4));
   auto o = options();
   o.min_angle = 28;
-  o.max_edge_length = 0.3;
+  o.max_edge_length = 0.06;  // ~50k points: more bad elements than compete in one iteration
   for (const char* name : {"s1", "s3", "s4", "s5", "touching", "block_rounds", "s1,s3,s4,s5,touching"}) {
     SCOPED_TRACE(std::string("GDR_DISABLE=") + name);
     setenv("GDR_DISABLE", name, 1);
     auto r = mesh(g, o);
-    EXPECT_GT(r.stats.steiner_points, 500);
+    EXPECT_GT(r.stats.steiner_points, 30000);
     EXPECT_EQ(r.stats.bad_triangles, 0);
   }
   setenv("GDR_DISABLE", "s2", 1);
