@@ -153,7 +153,9 @@ struct Engine {
         cb.progress(0.0, "iteration " + std::to_string(iter + 1) + ": " + std::to_string(nl) +
                              " bad elements, " + std::to_string(won) + " points inserted");
       if (trace)
-        std::fprintf(stderr, "gdr-trace iter %d: triangles %d, bad %zu, candidates %zu, won %lld, rounds %d, tuples %zu, MB %.1f (peak %.1f)\n",
+        std::fprintf(stderr,
+                     "gdr-trace iter %d: triangles %d, bad %zu, candidates %zu, won %lld, "
+                     "rounds %d, tuples %zu, MB %.1f (peak %.1f)\n",
                      iter + 1, dm.ntri, nl, ns, won, rounds, tuples.size(),
                      exec::memory_counter<Space>().current / 1048576.0,
                      exec::memory_counter<Space>().peak / 1048576.0);
@@ -374,16 +376,13 @@ struct Engine {
     stamp("subsegment copy");
     Ops::for_each(dm.ntri, [=] GDR_HD(long long t) {
       mv.tflag[t] = classify_triangle(mv, static_cast<int>(t), crit);
-      cnt[t] = mv.tflag[t] != kGood;
     });
-    const std::size_t nbad = static_cast<std::size_t>(Ops::exclusive_scan(cnt, cnt, dm.ntri));
-    list.resize_discard(nbad);
+    const int* cls = dm.tflag.data();
+    const std::size_t nbad = exec::compact_indices<Space>(
+        dm.ntri, [=] GDR_HD(long long t) { return cls[t] != kGood; }, list, dm.aux);
     int* bad = list.data();
-    const long long last = static_cast<long long>(dm.ntri) - 1;
-    const int total = static_cast<int>(nbad);
-    Ops::for_each(dm.ntri, [=] GDR_HD(long long t) {
-      if ((t < last ? cnt[t + 1] : total) != cnt[t])
-        bad[cnt[t]] = 2 * static_cast<int>(t) + (mv.tflag[t] == kBadProtected);
+    Ops::for_each(nbad, [=] GDR_HD(long long i) {
+      bad[i] = 2 * bad[i] + (cls[bad[i]] == kBadProtected);
     });
     list.to_host(out.bad);
     stamp("bad triangles");
