@@ -84,11 +84,11 @@ ExpandListResult expand_list(Buffer<Space, Tuple>& H, std::size_t initial, Step 
       break;
     if constexpr (Ops<Space>::is_gpu) {
       // Small windows (the long tails of big cavities) run their rounds inside one block.
-      // Room for the rounds' new tuples: several rounds' worth, at most a fraction of H (small
-      // problems stay small in memory).
+      // Room for the rounds' new tuples: a quarter of H (small problems stay small in memory),
+      // at least one round's worth, at most 64k tuples.
       constexpr std::size_t kSmallWindow = 4096;
       if (limits.block_rounds && right - left <= kSmallWindow) {
-        const std::size_t room = std::clamp<std::size_t>(right / 2, 4 * K * (right - left),
+        const std::size_t room = std::clamp<std::size_t>(right / 4, K * (right - left),
                                                          std::size_t(1) << 16);
         H.resize(right + room);
         const std::size_t before = left;
