@@ -271,8 +271,9 @@ struct Engine {
     clock.template stop<Space>("cavity");
   }
 
-  // Surviving marks and exact checks decide the winners; they get vertex numbers (the
-  // Steiner cap drops the surplus: winners are independent). Returns how many won.
+  // Surviving marks and exact checks decide the winners; they get vertex numbers. The
+  // Steiner cap may drop any of them: a dropped point's cavity stays as it was, and its
+  // triangles lie outside the circles of the neighbouring winners. Returns how many won.
   long long verify_and_number(std::size_t ns) {
     const std::size_t nt = tuples.size();
     Ops::for_each(nt, VerifyClaims{dm.view(), cand.data(), tuples.data(), failed.data(),
