@@ -38,7 +38,8 @@ Without -o the mesh is computed, summarized and (with --check) validated, but no
 
 Quality and size:
   --min-angle DEG         smallest angle wanted, in degrees (default 20, at most 34;
-                          0 turns the angle criterion off)
+                          0 turns the angle criterion off; above 30 refinement may
+                          not finish, see README "Known limits")
   --max-edge L            longest edge allowed (default: no limit)
   --max-area A            largest triangle area allowed (default: no limit)
   --max-steiner N         stop cleanly after inserting N Steiner points (default: no cap)
