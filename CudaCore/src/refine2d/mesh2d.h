@@ -26,7 +26,6 @@ enum : int {
   kCollectShift = 5,  // bits 5-8: the triangle's own collect mask (kernels.h, collect_mask)
   kCollectBits = 15 << kCollectShift,
   kSubseg0 = 1 << 9,  // edge i (bit 9+i) lies on a segment
-  kSubsegBits = 7 << 9,
   kFresh = 1 << 12,   // new triangle: its collect bits are not computed yet
 };
 
