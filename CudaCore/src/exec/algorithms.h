@@ -21,8 +21,8 @@ void iota(int* p, std::size_t n, int start = 0) {
 
 // Stream compaction: writes, in increasing order, every i in [0,n) with pred(i) != 0 into
 // `out` and returns how many. `pred` is a host+device functor of (long long i) -> bool.
-// `scratch` (n ints, contents lost) holds the offsets; a caller's long-lived buffer saves an
-// allocation per call.
+// `scratch` (resized to n ints, contents lost) holds the offsets: callers pass a long-lived
+// buffer of their own, which saves an allocation (and device memory) per call.
 template <class Space, class Pred>
 std::size_t compact_indices(std::size_t n, Pred pred, Buffer<Space, int>& out,
                             Buffer<Space, int>& scratch) {
@@ -43,12 +43,6 @@ std::size_t compact_indices(std::size_t n, Pred pred, Buffer<Space, int>& out,
     if ((i < last ? off[i + 1] : tot) != off[i]) o[off[i]] = static_cast<int>(i);
   });
   return total;
-}
-
-template <class Space, class Pred>
-std::size_t compact_indices(std::size_t n, Pred pred, Buffer<Space, int>& out) {
-  Buffer<Space, int> scratch;
-  return compact_indices<Space>(n, pred, out, scratch);
 }
 
 struct ExpandListResult {

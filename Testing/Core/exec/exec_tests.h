@@ -143,6 +143,10 @@ template <class Space>
 void check_compaction() {
   std::mt19937 rng(11);
   const double densities[] = {0.0, 0.01, 0.5, 0.97, 1.0};
+  // One scratch for all calls, as the engine reuses its own: stale offsets from a bigger
+  // earlier call must not leak into a later one.
+  Buffer<Space, int> scratch(3);
+  exec::fill<Space>(scratch.data(), 3, 9);
   for (std::size_t n : test_sizes()) {
     for (double p : densities) {
       SCOPED_TRACE("n = " + std::to_string(n) + ", density = " + std::to_string(p));
@@ -159,7 +163,8 @@ void check_compaction() {
       Buffer<Space, int> out(7);  // stale contents and size must not leak into the result
       exec::fill<Space>(out.data(), 7, -5);
       const std::size_t m =
-          exec::compact_indices<Space>(n, [=] GDR_HD(long long i) { return f[i] != 0; }, out);
+          exec::compact_indices<Space>(n, [=] GDR_HD(long long i) { return f[i] != 0; }, out,
+                                       scratch);
       EXPECT_EQ(m, ref.size());
       EXPECT_EQ(out.size(), ref.size());
       EXPECT_EQ(first_mismatch(out.to_host(), ref), -1) << "compacted indices differ (order or content)";
@@ -170,7 +175,8 @@ void check_compaction() {
       SCOPED_TRACE("n = " + std::to_string(n) + ", every third");
       Buffer<Space, int> out;
       const std::size_t m =
-          exec::compact_indices<Space>(n, [=] GDR_HD(long long i) { return i % 3 == 1; }, out);
+          exec::compact_indices<Space>(n, [=] GDR_HD(long long i) { return i % 3 == 1; }, out,
+                                       scratch);
       std::vector<int> ref;
       for (std::size_t i = 1; i < n; i += 3) ref.push_back(static_cast<int>(i));
       EXPECT_EQ(m, ref.size());
@@ -906,8 +912,9 @@ void check_memory_counter() {
 
   // Scratch allocated inside the algorithms is returned too.
   {
-    Buffer<Space, int> out;
-    exec::compact_indices<Space>(100000, [=] GDR_HD(long long i) { return (i & 1) != 0; }, out);
+    Buffer<Space, int> out, scratch;
+    exec::compact_indices<Space>(100000, [=] GDR_HD(long long i) { return (i & 1) != 0; }, out,
+                                 scratch);
     Buffer<Space, int> v(50000);
     v.zero();
     Ops<Space>::exclusive_scan(v.data(), v.data(), v.size());
