@@ -16,7 +16,7 @@
 
 namespace gdr::r2d {
 
-// The paper's design strategies and two of ours, each of which can be switched off to measure
+// The paper's design strategies and three of ours, each of which can be switched off to measure
 // what it buys (benchmarks only: GDR_DISABLE, see refine2d.cpp).
 struct Strategies {
   bool compaction = true;    // S1: compact dead triangles during refinement, not only at the end
@@ -25,6 +25,7 @@ struct Strategies {
   bool deferment = true;     // S5: defer cavities still growing after a few rounds
   bool touching = true;      // cavities that touch go in together when the mesh stays Delaunay
   bool block_rounds = true;  // small ExpandList windows run their rounds inside one GPU block
+  bool worst_first = true;   // bad triangles worst first, not larger first (kernels.h)
 };
 
 struct EngineParams {
@@ -182,7 +183,8 @@ struct Engine {
   void compute_splitting_points(std::size_t nl, int iter) {
     cand_all.resize_discard(nl);
     Ops::for_each(nl, ComputeSplittingPoints{dm.view(), params.criteria, list.data(), cand_all.data(),
-                                             0x9e3779b9u * static_cast<unsigned>(iter + 1)});
+                                             0x9e3779b9u * static_cast<unsigned>(iter + 1),
+                                             params.strategies.worst_first});
     clock.template stop<Space>("split+locate");
   }
 

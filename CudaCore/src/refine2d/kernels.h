@@ -227,13 +227,26 @@ struct PrioOf {
 
 enum : unsigned { kClassTriangle = 1, kClassWalkSegment = 2, kClassEncroached = 3 };
 
-// Priorities: bigger elements first, but only by factor-of-two size classes; within a class
-// the order is a pseudo-random permutation of the candidates. Exact sizes would make
+// Priorities. Subsegments: longer first, but only by factor-of-two size classes; within a
+// class the order is a pseudo-random permutation of the candidates. Exact sizes would make
 // graded neighbourhoods into long chains where each point loses to its bigger neighbour and
 // only one point per chain could be inserted per iteration.
 GDR_HD_INLINE float size_class(double size) {
   if (!(size > 0) || !(size < 1e38)) return size > 0 ? 1e38f : 0.0f;
   return static_cast<float>(exp2(floor(log2(size))));
+}
+
+// Triangles: worst first, by radius-edge ratio (squared here), as Triangle and CGAL Mesh_2
+// order them, not larger first as in the paper. Up to 30 degrees both orders give the same
+// meshes; above, larger-first cascades sooner: on the world map at 33 degrees it needed 258k
+// Steiner points against 152k, and at 33.5 degrees 1.4M against 383k (CGAL Mesh_2 did not
+// finish there in 300 s).
+GDR_HD_INLINE float radius_edge_ratio2(const MeshView& m, int t, double r2) {
+  const double* a = pt(m, m.tv[3 * t]);
+  const double* b = pt(m, m.tv[3 * t + 1]);
+  const double* d = pt(m, m.tv[3 * t + 2]);
+  const double q = r2 / fmin(dist2(a, b), fmin(dist2(b, d), dist2(d, a)));
+  return q < 1e38 ? static_cast<float>(q) : 1e38f;
 }
 GDR_HD_INLINE unsigned shuffle_id(unsigned x, unsigned salt) {  // a bijection of 32 bits
   x ^= salt;
@@ -275,6 +288,7 @@ struct ComputeSplittingPoints {
   const int* list;
   Candidate* out;
   unsigned salt;  // changes every iteration
+  bool worst_first;  // triangles by radius-edge ratio; false: larger first (the paper)
   GDR_HD void operator()(long long j) const {
     const int e = list[j];
     const int t = e >> 2, k = e & 3;
@@ -306,7 +320,8 @@ struct ComputeSplittingPoints {
         cand.kind = 1;
         cand.start = u;
         cand.ek = -1;
-        cand.prio = exec::make_priority(kClassTriangle, size_class(r2), id);
+        const float key = worst_first ? radius_edge_ratio2(m, t, r2) : size_class(r2);
+        cand.prio = exec::make_priority(kClassTriangle, key, id);
         return;
       }
       if (is_subseg(m, u, exit) || m.tn[3 * u + exit] < 0) {
