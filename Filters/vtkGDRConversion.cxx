@@ -323,6 +323,7 @@ void vtkGDRConversion::AddStats(const gdr::Refine2dStats& stats, vtkFieldData* f
   AddValue<vtkIdTypeArray>(fd, "SteinerPoints", static_cast<vtkIdType>(stats.steiner_points));
   AddValue<vtkIdTypeArray>(fd, "BadTriangles", static_cast<vtkIdType>(stats.bad_triangles));
   AddValue<vtkDoubleArray>(fd, "BadAreaPercent", stats.bad_area_percent);
+  AddValue<vtkIdTypeArray>(fd, "SteinerCap", static_cast<vtkIdType>(stats.steiner_cap));
   AddValue<vtkIntArray>(fd, "SteinerCapReached", stats.steiner_cap_reached ? 1 : 0);
   AddValue<vtkIntArray>(fd, "Stalled", stats.stalled ? 1 : 0);
   AddValue<vtkDoubleArray>(fd, "MinimumAngleReached", stats.min_angle_deg);

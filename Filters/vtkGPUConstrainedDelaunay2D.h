@@ -86,7 +86,8 @@ public:
   ///@{
   /**
    * Cap on the number of Steiner points; refinement stops cleanly when it is reached.
-   * -1 (default) means unlimited.
+   * -1 (default) means none up to 30 degrees and, above, where refinement may cascade
+   * without end, 1000 times the input points (at least 1M).
    */
   vtkSetClampMacro(MaximumSteinerPoints, vtkIdType, -1, VTK_ID_MAX);
   vtkGetMacro(MaximumSteinerPoints, vtkIdType);

@@ -39,10 +39,12 @@ Without -o the mesh is computed, summarized and (with --check) validated, but no
 Quality and size:
   --min-angle DEG         smallest angle wanted, in degrees (default 20, at most 34;
                           0 turns the angle criterion off; above 30 refinement may
-                          not finish, see README "Known limits")
+                          cascade, see --max-steiner and README "Known limits")
   --max-edge L            longest edge allowed (default: no limit)
   --max-area A            largest triangle area allowed (default: no limit)
-  --max-steiner N         stop cleanly after inserting N Steiner points (default: no cap)
+  --max-steiner N         stop cleanly after inserting N Steiner points (default: no
+                          cap up to 30 degrees; above, 1000 times the input points,
+                          at least 1M)
 Algorithm:
   --mode ruppert|chew     encroachment by diametral circle (ruppert, default) or lens (chew)
   --off-centers           insert off-centers instead of circumcenters (fewer points)
@@ -168,7 +170,8 @@ void print_summary(const Args2d& a, const Pslg& input, const Refine2dResult& r,
   info.row({"Steiner points", with_commas(s.steiner_points) + " in " +
                                   std::to_string(s.iterations) + " iterations"});
   if (s.steiner_cap_reached)
-    info.row({"", "stopped at the cap of " + with_commas(a.options.max_steiner_points)});
+    info.row({"", std::string("stopped at the ") + (s.automatic_steiner_cap ? "automatic " : "") +
+                      "cap of " + with_commas(s.steiner_cap)});
   if (s.stalled) info.row({"", "stalled: bad elements remain that no point could fix"});
   info.row({"backend", backend_line(s)});
   info.row({"peak device memory", s.backend_used == Backend::Gpu ? bytes(s.peak_device_bytes)
@@ -239,6 +242,8 @@ void write_stats_json(const std::string& path, const Args2d& a, const Refine2dRe
   j.field("bad_triangles", s.bad_triangles);
   j.field("bad_area_percent", s.bad_area_percent);
   j.field("small_angle_bad", s.small_angle_bad);
+  j.field("steiner_cap", s.steiner_cap);
+  j.field("automatic_steiner_cap", s.automatic_steiner_cap);
   j.field("steiner_cap_reached", s.steiner_cap_reached);
   j.field("stalled", s.stalled);
   j.field("min_angle_deg", s.min_angle_deg);

@@ -340,6 +340,46 @@ TEST_P(Refine2d, SteinerCapStopsCleanly) {
   EXPECT_GT(r.stats.bad_triangles, 0);
 }
 
+// Above 30 degrees refinement may not end, so unless a cap is set an automatic one applies:
+// on an input where our parallel refinement cascades at 34 degrees, the run stops there
+// cleanly with a valid mesh (or, if this schedule avoids the cascade, meets the bound).
+TEST_P(Refine2d, AboveThirtyDegreesAnAutomaticCapEndsACascade) {
+  const Pslg g = gdr::io::read_poly(std::string(GDR_DATA_DIR) + "/cascade34.poly");
+  auto o = options();
+  o.min_angle = 30;
+  EXPECT_EQ(mesh(g, o).stats.steiner_cap, -1);  // no cap up to 30 degrees
+  o.min_angle = 33.8;
+  auto r = mesh(g, o);
+  EXPECT_EQ(r.stats.steiner_cap, 1000000);  // max(1000 x 54 points, 1M)
+  EXPECT_TRUE(r.stats.automatic_steiner_cap);
+  EXPECT_FALSE(r.stats.steiner_cap_reached);
+  EXPECT_LT(r.stats.steiner_points, 1000);
+  o.min_angle = 34;
+  r = mesh(g, o);
+  if (r.stats.steiner_cap_reached) {
+    EXPECT_EQ(r.stats.steiner_points, 1000000);
+    EXPECT_GT(r.stats.bad_triangles, 0);
+  }
+  o.max_steiner_points = 5000;  // a cap of the caller's own replaces the automatic one
+  r = mesh(g, o);
+  EXPECT_EQ(r.stats.steiner_cap, 5000);
+  EXPECT_FALSE(r.stats.automatic_steiner_cap);
+  EXPECT_LE(r.stats.steiner_points, 5000);
+}
+
+// Worst-first ordering keeps refinement finite on the world map at 33.5 degrees (larger-first
+// cascaded to 1.4M points; CGAL Mesh_2 did not finish in 300 s).
+TEST_P(Refine2d, WorldMapAtThirtyThreeAndAHalfDegrees) {
+  const auto f = std::filesystem::path(GDR_SHARED_DATA_DIR) / "pslg" / "world_land_110m.poly";
+  if (!std::filesystem::exists(f)) GTEST_SKIP() << "no shared data at " << f;
+  auto o = options();
+  o.min_angle = 33.5;
+  auto r = mesh(gdr::io::read_poly(f.string()), o);
+  EXPECT_FALSE(r.stats.steiner_cap_reached);
+  EXPECT_LT(r.stats.steiner_points, 1000000);
+  EXPECT_LT(r.stats.bad_area_percent, 0.01);
+}
+
 TEST_P(Refine2d, SplitIntersectionsOption) {
   Pslg g;
   add_loop(g, square(0, 0, 4, 4));
