@@ -25,7 +25,7 @@ struct Strategies {
   bool deferment = true;     // S5: defer cavities still growing after a few rounds
   bool touching = true;      // cavities that touch go in together when the mesh stays Delaunay
   bool block_rounds = true;  // small ExpandList windows run their rounds inside one GPU block
-  bool worst_first = true;   // bad triangles worst first, not larger first (kernels.h)
+  bool worst_first = true;   // triangles bad by shape alone worst first, not larger first
 };
 
 struct EngineParams {

@@ -80,17 +80,25 @@ GDR_HD_INLINE bool in_small_angle(const MeshView& m, int p, int q) {
   return fabs(dp - dq) <= 1e-3 * (dp > dq ? dp : dq);
 }
 
+// Too big for the size bounds (longest edge, area)?
+GDR_HD_INLINE bool too_big(const MeshView& m, int t, const Criteria& c) {
+  const double* a = pt(m, m.tv[3 * t]);
+  const double* b = pt(m, m.tv[3 * t + 1]);
+  const double* d = pt(m, m.tv[3 * t + 2]);
+  const double cross = (b[0] - a[0]) * (d[1] - a[1]) - (b[1] - a[1]) * (d[0] - a[0]);
+  const double lmax = fmax(dist2(b, d), fmax(dist2(d, a), dist2(a, b)));
+  return (c.max_edge2 > 0 && lmax > c.max_edge2) || (c.max_area2 > 0 && fabs(cross) > c.max_area2);
+}
+
 GDR_HD_INLINE int classify_triangle(const MeshView& m, int t, const Criteria& c) {
+  if (too_big(m, t, c)) return kBad;
+  if (c.sin2_min_angle <= 0) return kGood;
   const int v0 = m.tv[3 * t], v1 = m.tv[3 * t + 1], v2 = m.tv[3 * t + 2];
   const double* a = pt(m, v0);
   const double* b = pt(m, v1);
   const double* d = pt(m, v2);
   const double l0 = dist2(b, d), l1 = dist2(d, a), l2 = dist2(a, b);  // edge i opposite vertex i
   const double cross = (b[0] - a[0]) * (d[1] - a[1]) - (b[1] - a[1]) * (d[0] - a[0]);
-  const double lmax = fmax(l0, fmax(l1, l2));
-  if (c.max_edge2 > 0 && lmax > c.max_edge2) return kBad;
-  if (c.max_area2 > 0 && fabs(cross) > c.max_area2) return kBad;
-  if (c.sin2_min_angle <= 0) return kGood;
   // min angle < theta  <=>  sin^2(theta) * (product of the two longer squared edges) > cross^2
   int s = 0;
   double lmin = l0;
@@ -225,7 +233,7 @@ struct PrioOf {
   GDR_HD_INLINE u64 operator()(int k) const { return cand[k].prio; }
 };
 
-enum : unsigned { kClassTriangle = 1, kClassWalkSegment = 2, kClassEncroached = 3 };
+enum : unsigned { kClassShape = 0, kClassTriangle = 1, kClassWalkSegment = 2, kClassEncroached = 3 };
 
 // Priorities. Subsegments: longer first, but only by factor-of-two size classes; within a
 // class the order is a pseudo-random permutation of the candidates. Exact sizes would make
@@ -236,11 +244,13 @@ GDR_HD_INLINE float size_class(double size) {
   return static_cast<float>(exp2(floor(log2(size))));
 }
 
-// Triangles: worst first, by radius-edge ratio (squared here), as Triangle and CGAL Mesh_2
-// order them, not larger first as in the paper. Up to 30 degrees both orders give the same
-// meshes; above, larger-first cascades sooner: on the world map at 33 degrees it needed 258k
-// Steiner points against 152k, and at 33.5 degrees 1.4M against 383k (CGAL Mesh_2 did not
-// finish there in 300 s).
+// Triangles: those too big for the size bounds first, larger first by size classes (the
+// paper's order); then those bad by their shape alone, worst first by radius-edge ratio
+// (squared here), as Triangle and CGAL Mesh_2 order them. For shape, larger-first needs
+// more points and cascades sooner above 30 degrees: the world map at 33.5 degrees took 1.3M
+// Steiner points larger-first against 345k (CGAL Mesh_2 did not finish in 60 s), and the
+// contour map at 30 degrees 376k against 337k. For size, worst-first takes more iterations
+// (counties at 1M points: 89 against 68 on the H100, 29% slower).
 GDR_HD_INLINE float radius_edge_ratio2(const MeshView& m, int t, double r2) {
   const double* a = pt(m, m.tv[3 * t]);
   const double* b = pt(m, m.tv[3 * t + 1]);
@@ -288,7 +298,7 @@ struct ComputeSplittingPoints {
   const int* list;
   Candidate* out;
   unsigned salt;  // changes every iteration
-  bool worst_first;  // triangles by radius-edge ratio; false: larger first (the paper)
+  bool worst_first;  // triangles bad by shape by radius-edge ratio; false: all larger first
   GDR_HD void operator()(long long j) const {
     const int e = list[j];
     const int t = e >> 2, k = e & 3;
@@ -320,8 +330,10 @@ struct ComputeSplittingPoints {
         cand.kind = 1;
         cand.start = u;
         cand.ek = -1;
-        const float key = worst_first ? radius_edge_ratio2(m, t, r2) : size_class(r2);
-        cand.prio = exec::make_priority(kClassTriangle, key, id);
+        if (worst_first && !too_big(m, t, c))
+          cand.prio = exec::make_priority(kClassShape, radius_edge_ratio2(m, t, r2), id);
+        else
+          cand.prio = exec::make_priority(kClassTriangle, size_class(r2), id);
         return;
       }
       if (is_subseg(m, u, exit) || m.tn[3 * u + exit] < 0) {
