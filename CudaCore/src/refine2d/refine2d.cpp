@@ -78,7 +78,7 @@ std::size_t estimate_triangles(const r2d::HostMesh& m, const Refine2dOptions& o)
 // 20.7 degrees, and in practice it cascades on some inputs from about 34 degrees (measured on
 // generated contour maps, where CGAL Mesh_2 also cascades on the world map at 33.5). An
 // automatic cap makes such a run stop and report. The largest run measured that did finish
-// needed 145 times its input points (the contour map at 33.5 degrees).
+// needed 130 times its input points (the contour map at 33.5 degrees).
 long long automatic_steiner_cap(const r2d::HostMesh& m, const Refine2dOptions& o) {
   if (o.max_steiner_points >= 0) return o.max_steiner_points;
   if (o.min_angle <= 30.0) return -1;
