@@ -2,6 +2,7 @@
 // conversion to the engine's arrays. The only CGAL translation unit of the core.
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <CGAL/spatial_sort.h>
 
@@ -14,7 +15,10 @@ namespace {
 
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Vb = CGAL::Triangulation_vertex_base_with_info_2<int, K>;
-using Fb = CGAL::Constrained_triangulation_face_base_2<K>;
+// Face info: its triangle number, or kOutside / kUnset (no hash maps over 2M faces).
+enum : int { kUnset = -1, kOutside = -2 };
+using Fb = CGAL::Constrained_triangulation_face_base_2<
+    K, CGAL::Triangulation_face_base_with_info_2<int, K>>;
 using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
 using Cdt = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::Exact_predicates_tag>;
 
@@ -65,9 +69,7 @@ HostMesh initial_cdt(const CleanPslg& g, bool remove_exterior) {
 
   // Domain: everything (convex hull), or only what is enclosed by segments and not in a
   // hole: flood from the hull and from each hole seed without crossing a constraint.
-  std::unordered_map<Cdt::Face_handle, int> face_id;
-  std::vector<Cdt::Face_handle> faces;
-  std::unordered_map<Cdt::Face_handle, bool> outside;
+  for (auto f : cdt.all_face_handles()) f->info() = kUnset;
   if (remove_exterior || !g.holes.empty()) {
     std::vector<Cdt::Face_handle> stack;
     if (remove_exterior)
@@ -80,16 +82,17 @@ HostMesh initial_cdt(const CleanPslg& g, bool remove_exterior) {
     while (!stack.empty()) {
       Cdt::Face_handle f = stack.back();
       stack.pop_back();
-      if (outside[f]) continue;
-      outside[f] = true;
+      if (f->info() == kOutside) continue;
+      f->info() = kOutside;
       for (int i = 0; i < 3; ++i)
-        if (!f->is_constrained(i) && !outside[f->neighbor(i)]) stack.push_back(f->neighbor(i));
+        if (!f->is_constrained(i) && f->neighbor(i)->info() != kOutside)
+          stack.push_back(f->neighbor(i));
     }
   }
+  std::vector<Cdt::Face_handle> faces;
   for (auto f : cdt.finite_face_handles()) {
-    auto it = outside.find(f);
-    if (it != outside.end() && it->second) continue;
-    face_id[f] = static_cast<int>(faces.size());
+    if (f->info() == kOutside) continue;
+    f->info() = static_cast<int>(faces.size());
     faces.push_back(f);
   }
   if (faces.empty())
@@ -117,8 +120,8 @@ HostMesh initial_cdt(const CleanPslg& g, bool remove_exterior) {
       // CGAL: vertices counter-clockwise, neighbour(i) opposite vertex(i) -- our convention.
       m.tv[3 * t + i] = f->vertex(i)->info();
       Cdt::Face_handle nb = f->neighbor(i);
-      auto it = face_id.find(nb);
-      m.tn[3 * t + i] = it == face_id.end() ? -1 : 3 * it->second + nb->index(f);
+      const int id = cdt.is_infinite(nb) ? kOutside : nb->info();
+      m.tn[3 * t + i] = id < 0 ? -1 : 3 * id + nb->index(f);
     }
   }
   // Segment of each edge; domain-boundary edges that are not segments become hull segments.
