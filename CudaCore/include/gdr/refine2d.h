@@ -28,9 +28,9 @@ struct Refine2dOptions {
   bool split_intersections = false;  // split crossing segments instead of refusing them
   bool refine = true;              // false: only the constrained Delaunay triangulation
   Backend backend = Backend::Auto;
-  // Auto uses the GPU above this estimated output size (measured on an H100: the GPU wins
-  // from about 100k output triangles, the CPU below about 30k; see Benchmarks/RESULTS.md).
-  std::size_t gpu_min_triangles = 50000;
+  // Auto uses the GPU from this estimated output size. 0 (default): chosen per run, for the
+  // CPU path's thread count and whether this process has used the GPU yet (refine2d.cpp).
+  std::size_t gpu_min_triangles = 0;
 };
 
 struct PhaseTime {

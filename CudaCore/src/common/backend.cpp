@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cctype>
 
 #include "gdr/error.h"
@@ -73,12 +74,18 @@ Backend resolve_backend(Backend requested, std::size_t work_size, std::size_t gp
         throw Error(Status::NoDevice, "GPU backend requested but " + device_info().reason);
       return Backend::Gpu;
     case Backend::Auto:
-      if (gpu_available() && work_size >= gpu_min_work) return Backend::Gpu;
+      if (work_size >= gpu_min_work && gpu_available()) return Backend::Gpu;
       return Backend::Cpu;
   }
   return Backend::Cpu;
 }
 
 int cpu_threads() { return omp_get_max_threads(); }
+
+namespace {
+std::atomic<bool> g_gpu_warm{false};
+}
+bool gpu_warm() { return g_gpu_warm.load(); }
+void mark_gpu_warm() { g_gpu_warm.store(true); }
 
 }  // namespace gdr

@@ -74,6 +74,18 @@ std::size_t estimate_triangles(const r2d::HostMesh& m, const Refine2dOptions& o)
   return est > 1e15 ? std::size_t(1e15) : static_cast<std::size_t>(est);
 }
 
+// Smallest estimated output for which Auto takes the GPU. Measured on the H100 machine
+// against the CPU path on 16 threads (Benchmarks/RESULTS.md, crossover tier): once the
+// process has used the GPU, it wins from about 5k triangles (1.1x at 5.7k, 0.64x at 1.9k);
+// the first GPU run of a process also pays about 0.35 s for the CUDA context and kernel
+// loading, which the CPU path only loses beyond about 600k triangles. Both scale with the
+// CPU path's threads.
+std::size_t gpu_min_triangles(const Refine2dOptions& o) {
+  if (o.gpu_min_triangles > 0) return o.gpu_min_triangles;
+  const std::size_t threads = static_cast<std::size_t>(std::max(1, cpu_threads()));
+  return (gpu_warm() ? 300 : 40000) * threads;
+}
+
 // Above 30 degrees Delaunay refinement may never end: its termination proofs stop near
 // 20.7 degrees, and in practice it cascades on some inputs from about 34 degrees (measured on
 // generated contour maps, where CGAL Mesh_2 also cascades on the world map at 33.5). An
@@ -113,7 +125,7 @@ Refine2dResult refine_2d(const Pslg& input, const Refine2dOptions& options, cons
 
   const r2d::Criteria crit = make_criteria(options);
   st.backend_used = resolve_backend(options.backend, estimate_triangles(mesh, options),
-                                    options.gpu_min_triangles);
+                                    gpu_min_triangles(options));
   if (st.backend_used == Backend::Gpu) st.device_name = device_info().name;
   else st.device_name = "CPU (" + std::to_string(cpu_threads()) + " OpenMP threads)";
 
@@ -139,6 +151,7 @@ Refine2dResult refine_2d(const Pslg& input, const Refine2dOptions& options, cons
     if (st.backend_used == Backend::Gpu) {
 #if defined(GDR_HAVE_CUDA)
       er = r2d::refine_mesh_cuda(mesh, mesh_out, params, engine_cb);
+      mark_gpu_warm();
 #endif
     } else {
       er = r2d::refine_mesh_cpu(mesh, mesh_out, params, engine_cb);

@@ -573,6 +573,19 @@ TEST(Refine2dBackends, GpuRequestedWithoutDeviceIsAClearError) {
   EXPECT_EQ(gdr::refine_2d(g, o).stats.backend_used, Backend::Cpu);
 }
 
+// Auto: a tiny job stays on the CPU (the GPU is not even probed); the threshold can be set.
+TEST(Refine2dBackends, AutoChoosesByEstimatedSize) {
+  Pslg g;
+  add_loop(g, square(0, 0, 1, 1));
+  gdr::Refine2dOptions o;
+  o.backend = Backend::Auto;
+  EXPECT_EQ(gdr::refine_2d(g, o).stats.backend_used, Backend::Cpu);
+  o.gpu_min_triangles = 1;
+  EXPECT_EQ(gdr::refine_2d(g, o).stats.backend_used,
+            gdr::gpu_available() ? Backend::Gpu : Backend::Cpu);
+  if (gdr::gpu_available()) EXPECT_TRUE(gdr::gpu_warm());
+}
+
 INSTANTIATE_TEST_SUITE_P(Backends, Refine2d, ::testing::Values(Backend::Cpu, Backend::Gpu),
                          [](const auto& info) { return std::string(gdr::to_string(info.param)); });
 
