@@ -87,9 +87,8 @@ std::size_t gpu_min_triangles(const Refine2dOptions& o) {
 }
 
 // Above 30 degrees Delaunay refinement may never end: its termination proofs stop near
-// 20.7 degrees, and in practice it cascades on some inputs from about 34 degrees (measured on
-// generated contour maps, where CGAL Mesh_2 also cascades on the world map at 33.5). An
-// automatic cap makes such a run stop and report. The largest run measured that did finish
+// 20.7 degrees; in practice ours cascades on some generated contour maps at 34 degrees, and
+// CGAL Mesh_2 on the world map at 33.5. An automatic cap makes such a run stop and report. The largest run measured that did finish
 // needed 130 times its input points (the contour map at 33.5 degrees).
 long long automatic_steiner_cap(const r2d::HostMesh& m, const Refine2dOptions& o) {
   if (o.max_steiner_points >= 0) return o.max_steiner_points;
