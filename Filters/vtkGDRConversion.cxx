@@ -327,8 +327,10 @@ void vtkGDRConversion::AddStats(const gdr::Refine2dStats& stats, vtkFieldData* f
   AddValue<vtkIntArray>(fd, "SteinerCapReached", stats.steiner_cap_reached ? 1 : 0);
   AddValue<vtkIntArray>(fd, "Stalled", stats.stalled ? 1 : 0);
   AddValue<vtkDoubleArray>(fd, "MinimumAngleReached", stats.min_angle_deg);
+  AddValue<vtkDoubleArray>(fd, "InputSeconds", stats.input_seconds);
   AddValue<vtkDoubleArray>(fd, "CDTSeconds", stats.cdt_seconds);
   AddValue<vtkDoubleArray>(fd, "RefineSeconds", stats.refine_seconds);
+  AddValue<vtkDoubleArray>(fd, "OutputSeconds", stats.output_seconds);
   AddValue<vtkDoubleArray>(fd, "TotalSeconds", stats.total_seconds);
   AddValue<vtkDoubleArray>(
     fd, "PeakDeviceBytes", static_cast<double>(stats.peak_device_bytes));

@@ -188,11 +188,13 @@ void print_summary(const Args2d& a, const Pslg& input, const Refine2dResult& r,
 
   Table times;
   times.row({"time", "seconds", "share"});
+  times.row({"  input checks", fixed(s.input_seconds, 3), ""});
   times.row({"  initial CDT", fixed(s.cdt_seconds, 3), ""});
   times.row({"  refinement", fixed(s.refine_seconds, 3), ""});
   for (const auto& p : s.phases)
     times.row({"    " + p.name, fixed(p.seconds, 3),
                s.refine_seconds > 0 ? fixed(100 * p.seconds / s.refine_seconds, 1) + "%" : ""});
+  times.row({"  output mesh", fixed(s.output_seconds, 3), ""});
   times.row({"  mesher total", fixed(s.total_seconds, 3), ""});
   times.row({"  read input", fixed(t.read, 3), ""});
   if (!a.output.empty()) times.row({"  write output", fixed(t.write, 3), ""});
@@ -247,8 +249,10 @@ void write_stats_json(const std::string& path, const Args2d& a, const Refine2dRe
   j.field("steiner_cap_reached", s.steiner_cap_reached);
   j.field("stalled", s.stalled);
   j.field("min_angle_deg", s.min_angle_deg);
+  j.field("input_seconds", s.input_seconds);
   j.field("cdt_seconds", s.cdt_seconds);
   j.field("refine_seconds", s.refine_seconds);
+  j.field("output_seconds", s.output_seconds);
   j.field("total_seconds", s.total_seconds);
   j.field("peak_device_bytes", static_cast<unsigned long long>(s.peak_device_bytes));
   j.key("phases");

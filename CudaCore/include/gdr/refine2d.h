@@ -56,8 +56,10 @@ struct Refine2dStats {
   bool steiner_cap_reached = false;
   bool stalled = false;               // no point could be inserted although bad elements remain
   double min_angle_deg = 0;           // smallest angle in the output
+  double input_seconds = 0;           // input checks and cleaning (duplicates, crossings)
   double cdt_seconds = 0;             // initial CDT (CPU)
   double refine_seconds = 0;          // refinement including transfers
+  double output_seconds = 0;          // conversion to the output mesh and its bad-area count
   double total_seconds = 0;
   std::size_t peak_device_bytes = 0;  // GPU backend: peak bytes held by the engine on the device
   std::vector<PhaseTime> phases;      // accumulated refinement time per phase
