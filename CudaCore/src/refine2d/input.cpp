@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <parallel/algorithm>
 #include <sstream>
-#include <unordered_map>
 
 #include "predicates/predicates.h"
 
@@ -19,13 +19,6 @@ std::string list_ints(const std::vector<long long>& v, std::size_t total) {
 }
 
 namespace {
-
-struct PointHash {
-  std::size_t operator()(const std::pair<double, double>& p) const {
-    const std::size_t a = std::hash<double>()(p.first), b = std::hash<double>()(p.second);
-    return a ^ (b + 0x9e3779b97f4a7c15ull + (a << 6) + (a >> 2));
-  }
-};
 
 int sgn(double v) { return (v > 0) - (v < 0); }
 
@@ -123,15 +116,32 @@ void split_conflicts(CleanPslg& g, const std::vector<SegmentConflict>& conflicts
   g.segment_origin.swap(origin);
 }
 
+// Indices 0..n-1 in parallel-sorted order of `less` (ties by index: stable).
+template <class Less>
+std::vector<int> sorted_indices(std::size_t n, const Less& less) {
+  std::vector<int> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<int>(i);
+  __gnu_parallel::sort(order.begin(), order.end(),
+                       [&](int i, int j) { return less(i, j) || (!less(j, i) && i < j); });
+  return order;
+}
+
 void dedupe_segments(CleanPslg& g, const Callbacks& cb) {
-  std::unordered_map<long long, int> seen;
+  const std::size_t n = g.segments.size();
+  std::vector<long long> key(n);
+  for (std::size_t s = 0; s < n; ++s) {
+    const int a = std::min(g.segments[s][0], g.segments[s][1]);
+    const int b = std::max(g.segments[s][0], g.segments[s][1]);
+    key[s] = (static_cast<long long>(a) << 32) | b;
+  }
+  const std::vector<int> order = sorted_indices(n, [&](int i, int j) { return key[i] < key[j]; });
+  std::vector<char> repeat(n, 0);  // the same segment as an earlier one
+  for (std::size_t k = 1; k < n; ++k) repeat[order[k]] = key[order[k]] == key[order[k - 1]];
   std::vector<std::array<int, 2>> segs;
   std::vector<int> origin;
   long long dropped = 0;
-  for (std::size_t s = 0; s < g.segments.size(); ++s) {
-    const int a = std::min(g.segments[s][0], g.segments[s][1]);
-    const int b = std::max(g.segments[s][0], g.segments[s][1]);
-    if (!seen.emplace((static_cast<long long>(a) << 32) | b, 1).second) {
+  for (std::size_t s = 0; s < n; ++s) {
+    if (repeat[s]) {
       ++dropped;
       continue;
     }
@@ -165,39 +175,55 @@ std::vector<SegmentConflict> find_segment_conflicts(const std::vector<Point2>& P
   auto cell = [&](double v, double o) {
     return std::clamp(static_cast<int>((v - o) / h), 0, g - 1);
   };
-  std::vector<std::vector<int>> cells(static_cast<std::size_t>(g) * g);
-  for (std::size_t i = 0; i < S.size(); ++i) {
+  // The cells as one array (counted, then filled): a vector per cell would be a million
+  // small allocations for a million segments.
+  const std::size_t ncells = static_cast<std::size_t>(g) * g;
+  auto for_cells = [&](std::size_t i, auto&& f) {
     const Point2 &a = P[S[i][0]], &b = P[S[i][1]];
     const int cx0 = cell(std::min(a.x, b.x), x0), cx1 = cell(std::max(a.x, b.x), x0);
     const int cy0 = cell(std::min(a.y, b.y), y0), cy1 = cell(std::max(a.y, b.y), y0);
     for (int cy = cy0; cy <= cy1; ++cy)
-      for (int cx = cx0; cx <= cx1; ++cx) cells[static_cast<std::size_t>(cy) * g + cx].push_back(int(i));
+      for (int cx = cx0; cx <= cx1; ++cx) f(static_cast<std::size_t>(cy) * g + cx);
+  };
+  std::vector<std::size_t> begin(ncells + 1, 0);
+  for (std::size_t i = 0; i < S.size(); ++i) for_cells(i, [&](std::size_t c) { ++begin[c + 1]; });
+  for (std::size_t c = 0; c < ncells; ++c) begin[c + 1] += begin[c];
+  std::vector<int> in_cell(begin[ncells]);
+  {
+    std::vector<std::size_t> fill(begin.begin(), begin.end() - 1);
+    for (std::size_t i = 0; i < S.size(); ++i)
+      for_cells(i, [&](std::size_t c) { in_cell[fill[c]++] = static_cast<int>(i); });
   }
   // Points that end no segment may still lie on one (the CDT would split it silently).
   std::vector<char> is_end(P.size(), 0);
   for (const auto& s : S) is_end[s[0]] = is_end[s[1]] = 1;
-  std::vector<std::vector<int>> cell_points(cells.size());
+  std::vector<std::pair<std::size_t, int>> loose;  // (cell, point)
   for (std::size_t v = 0; v < P.size(); ++v)
     if (!is_end[v] && P[v].x >= x0 && P[v].x <= x1 && P[v].y >= y0 && P[v].y <= y1)
-      cell_points[static_cast<std::size_t>(cell(P[v].y, y0)) * g + cell(P[v].x, x0)].push_back(int(v));
-  const long long ncell = static_cast<long long>(cells.size());
+      loose.push_back({static_cast<std::size_t>(cell(P[v].y, y0)) * g + cell(P[v].x, x0), int(v)});
+  std::sort(loose.begin(), loose.end());
+  const long long ncell = static_cast<long long>(ncells);
 #pragma omp parallel
   {
     std::vector<SegmentConflict> local;
 #pragma omp for schedule(dynamic, 64)
     for (long long c = 0; c < ncell; ++c) {
-      const auto& list = cells[c];
-      for (std::size_t i = 0; i < list.size() && local.size() < limit; ++i)
-        for (std::size_t j = i + 1; j < list.size(); ++j) {
+      const int* list = in_cell.data() + begin[c];
+      const std::size_t len = begin[c + 1] - begin[c];
+      for (std::size_t i = 0; i < len && local.size() < limit; ++i)
+        for (std::size_t j = i + 1; j < len; ++j) {
           SegmentConflict::Kind kind;
           if (conflict(P, S[list[i]], S[list[j]], kind))
             local.push_back({std::min(list[i], list[j]), std::max(list[i], list[j]), kind});
         }
-      for (int v : cell_points[c])
-        for (int s : list)
+      auto lp = std::lower_bound(loose.begin(), loose.end(), std::make_pair(std::size_t(c), -1));
+      for (; lp != loose.end() && lp->first == std::size_t(c); ++lp)
+        for (std::size_t k = 0; k < len; ++k) {
+          const int s = list[k], v = lp->second;
           if (pred::orient2d(xy(P, S[s][0]), xy(P, S[s][1]), xy(P, v)) == 0 &&
               strictly_between(P[S[s][0]], P[S[s][1]], P[v]))
             local.push_back({s, -1, SegmentConflict::Touch, v});
+        }
     }
 #pragma omp critical
     found.insert(found.end(), local.begin(), local.end());
@@ -281,15 +307,27 @@ CleanPslg clean_input(const Pslg& in, const Refine2dOptions& o, const Callbacks&
   validate_refine2d_input(in, o);
   CleanPslg g;
   g.holes = in.holes;
-  std::vector<int> remap(in.points.size());
-  std::unordered_map<std::pair<double, double>, int, PointHash> index;
-  index.reserve(in.points.size() * 2);
-  for (std::size_t i = 0; i < in.points.size(); ++i) {
-    const auto key = std::make_pair(in.points[i].x + 0.0, in.points[i].y + 0.0);  // -0 == 0
-    auto it = index.emplace(key, static_cast<int>(g.points.size()));
-    if (it.second) g.points.push_back(in.points[i]);
-    else ++g.duplicates_merged;
-    remap[i] = it.first->second;
+  // Duplicate points: sorted by coordinates (-0 == 0), each run of equal points maps to its
+  // first in input order; the kept points stay in input order.
+  const std::size_t np = in.points.size();
+  const auto& P = in.points;
+  const std::vector<int> order = sorted_indices(np, [&](int i, int j) {
+    return P[i].x < P[j].x || (P[i].x == P[j].x && P[i].y < P[j].y);
+  });
+  std::vector<int> first(np);  // first input index with the same coordinates
+  for (std::size_t k = 0; k < np; ++k) {
+    const int i = order[k], h = k ? order[k - 1] : -1;
+    first[i] = h >= 0 && P[h].x == P[i].x && P[h].y == P[i].y ? first[h] : i;
+  }
+  std::vector<int> remap(np);
+  for (std::size_t i = 0; i < np; ++i) {
+    if (first[i] == static_cast<int>(i)) {
+      remap[i] = static_cast<int>(g.points.size());
+      g.points.push_back(P[i]);
+    } else {
+      remap[i] = remap[first[i]];  // first[i] < i: already numbered
+      ++g.duplicates_merged;
+    }
   }
   if (g.duplicates_merged && cb.warning)
     cb.warning(std::to_string(g.duplicates_merged) + " duplicate point(s) merged");

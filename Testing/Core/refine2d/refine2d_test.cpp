@@ -513,16 +513,25 @@ TEST_P(Refine2d, BadInputs) {
   big.max_area = std::nan("");
   EXPECT_EQ(status_of(ok, big), gdr::Status::InvalidInput);
 
-  // Duplicates are merged and reported, not refused.
-  Pslg dup = ok;
-  dup.points.push_back(ok.points[1]);
-  dup.segments.push_back({4, 3});
+  // Duplicates are merged and reported, not refused: the first of equal points stays, in
+  // input order (-0 equals 0), and segments on a later twin move to it.
+  Pslg dup;
+  dup.points = {{0.5, 0.5}, {0, 0}, {1, 0}, {1, 1}, {-0.0, 0}, {0, 1}, {1, 0}, {0.5, 0.5}};
+  dup.segments = {{1, 2}, {6, 3}, {3, 5}, {5, 4}, {2, 1}};
   gdr::Callbacks cb;
   std::string warned;
   cb.warning = [&](const std::string& w) { warned += w; };
   auto r = gdr::refine_2d(dup, o, cb);
-  EXPECT_EQ(r.stats.duplicate_points_merged, 1);
+  EXPECT_EQ(r.stats.duplicate_points_merged, 3);
   EXPECT_NE(warned.find("duplicate"), std::string::npos);
+  EXPECT_NE(warned.find("1 duplicate segment"), std::string::npos) << warned;  // {2, 1}
+  const std::vector<gdr::Point2> kept = {{0.5, 0.5}, {0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  ASSERT_GE(r.mesh.points.size(), kept.size());
+  for (std::size_t i = 0; i < kept.size(); ++i) {
+    EXPECT_EQ(r.mesh.points[i].x, kept[i].x) << i;
+    EXPECT_EQ(r.mesh.points[i].y, kept[i].y) << i;
+  }
+  EXPECT_TRUE(gdr::validate_trimesh(r.mesh, &dup).valid);
 }
 
 TEST_P(Refine2d, AbortStopsTheRun) {
