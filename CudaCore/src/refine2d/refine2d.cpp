@@ -93,11 +93,12 @@ std::size_t gpu_min_triangles(const Refine2dOptions& o) {
 // 20.7 degrees; in practice ours cascades on some generated contour maps at 34 degrees, and
 // CGAL Mesh_2 on the world map at 33.5. An automatic cap makes such a run stop and report. The largest run measured that did finish
 // needed 130 times its input points (the contour map at 33.5 degrees).
-long long automatic_steiner_cap(const r2d::HostMesh& m, const Refine2dOptions& o) {
+long long automatic_steiner_cap(int cdt_points, std::size_t estimated_triangles,
+                                const Refine2dOptions& o) {
   if (o.max_steiner_points >= 0) return o.max_steiner_points;
   if (o.min_angle <= 30.0) return -1;
-  const double est = static_cast<double>(estimate_triangles(m, o));
-  return static_cast<long long>(std::max({1000.0 * m.points(), 1e6, 4.0 * est}));
+  return static_cast<long long>(
+      std::max({1000.0 * cdt_points, 1e6, 4.0 * static_cast<double>(estimated_triangles)}));
 }
 
 }  // namespace
@@ -127,8 +128,9 @@ Refine2dResult refine_2d(const Pslg& input, const Refine2dOptions& options, cons
   const int cdt_points = mesh.points();
 
   const r2d::Criteria crit = make_criteria(options);
-  st.backend_used = resolve_backend(options.backend, estimate_triangles(mesh, options),
-                                    gpu_min_triangles(options));
+  const std::size_t estimated_triangles = estimate_triangles(mesh, options);
+  st.backend_used =
+      resolve_backend(options.backend, estimated_triangles, gpu_min_triangles(options));
   if (st.backend_used == Backend::Gpu) st.device_name = device_info().name;
   else st.device_name = "CPU (" + std::to_string(cpu_threads()) + " OpenMP threads)";
 
@@ -136,7 +138,7 @@ Refine2dResult refine_2d(const Pslg& input, const Refine2dOptions& options, cons
   // subsegments and bad triangles the same way).
   r2d::EngineParams params;
   params.criteria = crit;
-  params.max_steiner = automatic_steiner_cap(mesh, options);
+  params.max_steiner = automatic_steiner_cap(cdt_points, estimated_triangles, options);
   st.steiner_cap = params.max_steiner;
   st.automatic_steiner_cap = options.max_steiner_points < 0 && params.max_steiner >= 0;
   params.strategies = strategies_from_environment();
