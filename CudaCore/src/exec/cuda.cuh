@@ -30,19 +30,19 @@ __global__ void for_each_kernel(long long n, F f) {
   if (i < n) f(i);
 }
 // ExpandList rounds on small windows, all in one block: a round needs no launch and no
-// host round trip (cavities' long tails take hundreds of such rounds). io = {left, right,
-// rounds}; stops where the host loop would (limits), when the window outgrows one block's
-// share of work, or when H's capacity might not hold the next round.
+// host round trip (cavities' long tails take hundreds of such rounds). Starts from left,
+// right, rounds and writes where it stopped to io = {left, right, rounds}: where the host
+// loop would (limits), when the window outgrows one block's share of work, or when H's
+// capacity might not hold the next round.
 constexpr int kSmallRoundThreads = 1024;
 
 template <int K, class Tuple, class Step>
 __global__ void __launch_bounds__(kSmallRoundThreads)
-small_rounds_kernel(Tuple* H, long long* io, long long cap, Step step, int max_rounds,
-                    int defer_after_rounds, long long defer_below, long long max_window) {
+small_rounds_kernel(Tuple* H, long long left, long long right, int rounds, long long* io,
+                    long long cap, Step step, int max_rounds, int defer_after_rounds,
+                    long long defer_below, long long max_window) {
   using BlockScan = cub::BlockScan<int, kSmallRoundThreads>;
   __shared__ typename BlockScan::TempStorage scan_storage;
-  long long left = io[0], right = io[1];
-  int rounds = static_cast<int>(io[2]);
   for (;;) {  // every thread holds the same left/right/rounds: the exits are uniform
     const long long w = right - left;
     if (w == 0 || w > max_window || right + w * K > cap || rounds >= max_rounds ||
@@ -185,20 +185,29 @@ struct Ops<Cuda> {
   static void small_rounds(Tuple* H, std::size_t& left, std::size_t& right, std::size_t cap,
                            const Step& step, int& rounds, int max_rounds, int defer_after_rounds,
                            std::size_t defer_below, std::size_t max_window) {
-    static long long* dio = [] {  // {left, right, rounds} on the device
-      void* p = nullptr;
-      detail::cuda_check(cudaMalloc(&p, 3 * sizeof(long long)), "small rounds");
-      return static_cast<long long*>(p);
+    // The kernel writes {left, right, rounds} into mapped pinned host memory, read after
+    // the one synchronisation the host needs anyway.
+    struct Mapped {
+      long long* host = nullptr;
+      long long* device = nullptr;
+    };
+    static const Mapped m = [] {
+      Mapped r;
+      detail::cuda_check(cudaHostAlloc(reinterpret_cast<void**>(&r.host), 3 * sizeof(long long),
+                                       cudaHostAllocMapped),
+                         "small rounds");
+      detail::cuda_check(cudaHostGetDevicePointer(reinterpret_cast<void**>(&r.device), r.host, 0),
+                         "small rounds");
+      return r;
     }();
-    const long long host_io[3] = {static_cast<long long>(left), static_cast<long long>(right), rounds};
-    detail::cuda_check(cudaMemcpy(dio, host_io, sizeof host_io, cudaMemcpyHostToDevice),
-                       "small rounds");
+    long long* io = m.device;
+    const long long* back = m.host;
     detail::small_rounds_kernel<K><<<1, detail::kSmallRoundThreads>>>(
-        H, dio, static_cast<long long>(cap), step, max_rounds, defer_after_rounds,
+        H, static_cast<long long>(left), static_cast<long long>(right), rounds, io,
+        static_cast<long long>(cap), step, max_rounds, defer_after_rounds,
         static_cast<long long>(defer_below), static_cast<long long>(max_window));
     detail::cuda_check(cudaGetLastError(), "small rounds launch");
-    long long back[3];
-    detail::cuda_check(cudaMemcpy(back, dio, sizeof back, cudaMemcpyDeviceToHost), "small rounds");
+    detail::cuda_check(cudaStreamSynchronize(0), "small rounds");
     left = static_cast<std::size_t>(back[0]);
     right = static_cast<std::size_t>(back[1]);
     rounds = static_cast<int>(back[2]);

@@ -19,6 +19,7 @@
 namespace gdr {
 namespace {
 
+constexpr double kPi = 3.14159265358979323846;
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 double squared_distance(const Point2& a, const Point2& b) {
@@ -26,7 +27,6 @@ double squared_distance(const Point2& a, const Point2& b) {
 }
 
 r2d::Criteria make_criteria(const Refine2dOptions& o) {
-  constexpr double kPi = 3.14159265358979323846;
   r2d::Criteria c;
   const double s = std::sin(o.min_angle * kPi / 180.0);
   c.sin2_min_angle = o.min_angle > 0 ? s * s : 0.0;
@@ -91,8 +91,9 @@ std::size_t gpu_min_triangles(const Refine2dOptions& o) {
 
 // Above 30 degrees Delaunay refinement may never end: its termination proofs stop near
 // 20.7 degrees; in practice ours cascades on some generated contour maps at 34 degrees, and
-// CGAL Mesh_2 on the world map at 33.5. An automatic cap makes such a run stop and report. The largest run measured that did finish
-// needed 130 times its input points (the contour map at 33.5 degrees).
+// CGAL Mesh_2 on the world map at 33.5. An automatic cap makes such a run stop and report.
+// The largest run measured that did finish needed 130 times its input points (the contour
+// map at 33.5 degrees).
 long long automatic_steiner_cap(int cdt_points, std::size_t estimated_triangles,
                                 const Refine2dOptions& o) {
   if (o.max_steiner_points >= 0) return o.max_steiner_points;
@@ -224,7 +225,7 @@ Refine2dResult refine_2d(const Pslg& input, const Refine2dOptions& options, cons
     const double others = la * lb * lc / std::min({la, lb, lc});
     min_sin2 = std::min(min_sin2, others > 0 ? 4 * area * area / others : 0.0);
   }
-  const double min_angle = std::asin(std::sqrt(std::min(1.0, min_sin2))) * 180.0 / 3.14159265358979323846;
+  const double min_angle = std::asin(std::sqrt(std::min(1.0, min_sin2))) * 180.0 / kPi;
   double bad_area = 0;
   long long protected_bad = 0;
   for (const int code : mesh_out.bad) {
