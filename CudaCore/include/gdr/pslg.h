@@ -16,14 +16,30 @@ struct Pslg {
   std::vector<Point2> holes;
 };
 
-// Piecewise linear complex given as a triangulated surface (plus optional segments).
+// A region seed (TetGen's regional attribute): the region of the domain that holds `point`
+// gets `attribute`, and, when max_volume > 0, that volume bound.
+struct RegionSeed {
+  Point3 point;
+  int attribute = 0;
+  double max_volume = 0;
+};
+
+// Piecewise linear complex given as a triangulated surface: one or several closed shells,
+// optional internal facets, optional segments, hole and region seeds.
 struct Surface {
   std::vector<Point3> points;
   std::vector<std::array<int, 3>> triangles;
+  // Per triangle, the input facet (polygon) it belongs to: the triangles of one facet are
+  // coplanar and the edges they share are not segments. Empty: every triangle is a facet.
+  std::vector<int> triangle_facet;
   std::vector<std::array<int, 2>> segments;
+  std::vector<Point3> holes;         // seeds of volumes to leave empty
+  std::vector<RegionSeed> regions;   // seeds of regions with attributes
 };
 
-enum class PointType : std::uint8_t { Input = 0, Segment = 1, Free = 2 };
+// Where a mesh vertex lies: an input vertex, on an input segment, on an input facet (3D),
+// or free in the interior.
+enum class PointType : std::uint8_t { Input = 0, Segment = 1, Free = 2, Facet = 3 };
 
 // A triangle mesh. Triangles are counter-clockwise.
 struct TriMesh {
@@ -42,6 +58,8 @@ struct TetMesh {
   std::vector<PointType> point_type;
   std::vector<std::array<int, 3>> subfaces;  // boundary / constrained faces
   std::vector<std::array<int, 2>> subsegments;
+  std::vector<int> subface_facet;            // per subface: its input facet (may be empty)
+  std::vector<int> tet_region;               // per tetrahedron: region attribute (may be empty)
 };
 
 }  // namespace gdr

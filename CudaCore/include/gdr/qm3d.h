@@ -1,0 +1,83 @@
+// gQM3d: quality tetrahedral meshing of a piecewise linear complex by 3D constrained
+// Delaunay refinement (Chen & Tan, section 6). Public, VTK-free, CUDA-free facade.
+#pragma once
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "gdr/backend.h"
+#include "gdr/error.h"
+#include "gdr/progress.h"
+#include "gdr/pslg.h"
+#include "gdr/refine2d.h"  // PhaseTime
+
+namespace gdr {
+
+struct QualityTetOptions {
+  // Largest radius-edge ratio allowed (TetGen's -q B): at least 1.0; 0 turns it off.
+  double radius_edge_ratio = 2.0;
+  // Smallest dihedral angle allowed, in degrees (TetGen's -q B/d); 0 (default) is off.
+  double min_dihedral_angle = 0.0;
+  // Largest tetrahedron volume allowed (TetGen's -a); 0 is off.
+  double max_volume = 0.0;
+  // Refinement stops cleanly at this many Steiner points. -1 (automatic): a cap applies
+  // only where termination is not guaranteed (radius-edge below 2 or a dihedral bound).
+  long long max_steiner_points = -1;
+  bool refine = true;      // false: only the constrained Delaunay tetrahedralization
+  Backend backend = Backend::Auto;
+  std::size_t gpu_min_tets = 0;  // Auto uses the GPU from this estimated size; 0: measured default
+};
+
+struct QualityTetStats {
+  Backend backend_used = Backend::Cpu;
+  std::string device_name;
+  int iterations = 0;
+  long long input_points = 0;
+  long long input_triangles = 0;
+  long long input_facets = 0;
+  long long input_segments = 0;
+  long long duplicate_points_merged = 0;
+  long long duplicate_triangles_merged = 0;
+  long long cdt_steiner_points = 0;     // added by the initial CDT (boundary recovery)
+  long long steiner_points = 0;         // added in total (CDT and refinement)
+  long long output_points = 0;
+  long long output_tets = 0;
+  long long output_subfaces = 0;
+  long long bad_tets = 0;               // left above the bounds
+  long long protected_bad_tets = 0;     // of those: next to small input angles (unfixable)
+  double bad_volume_percent = 0;
+  long long steiner_cap = -1;           // the cap in effect (-1: none)
+  bool automatic_steiner_cap = false;
+  bool steiner_cap_reached = false;
+  bool stalled = false;                 // bad elements remain that could not be split
+  double min_dihedral_deg = 0, max_dihedral_deg = 0;
+  double max_radius_edge = 0;
+  double volume = 0;                    // of the output
+  double input_volume = 0;              // enclosed by the input surface
+  double input_seconds = 0, cdt_seconds = 0, refine_seconds = 0, output_seconds = 0;
+  double total_seconds = 0;
+  std::size_t peak_device_bytes = 0;
+  std::vector<PhaseTime> phases;
+};
+
+struct QualityTetResult {
+  TetMesh mesh;                          // with subface_facet and (regions given) tet_region
+  // Per tetrahedron, for output arrays.
+  std::vector<float> radius_edge;
+  std::vector<float> min_dihedral, max_dihedral;  // degrees
+  std::vector<double> volume;
+  std::vector<unsigned char> is_bad;     // 1 above the bounds, 2 above them but protected
+  // All six dihedral angles of every tetrahedron, 1-degree bins over [0, 180).
+  std::vector<long long> dihedral_histogram;
+  QualityTetStats stats;
+};
+
+// Checks the surface and the options; throws gdr::Error naming the offending items.
+void validate_quality_tet_input(const Surface& input, const QualityTetOptions& options);
+
+// Meshes the volume enclosed by `input`. Throws gdr::Error (InvalidInput,
+// SelfIntersectingInput, NoDevice, OutOfDeviceMemory, Aborted, InternalError).
+QualityTetResult quality_tet_mesh(const Surface& input, const QualityTetOptions& options,
+                                  const Callbacks& callbacks = {});
+
+}  // namespace gdr

@@ -1,0 +1,52 @@
+// The 3D constrained front end shared by the 3D meshers: checks and cleans a surface into a
+// piecewise linear complex, and computes its constrained Delaunay tetrahedralization on the
+// CPU (TetGen's library), mapped once into the engines' HostTetMesh.
+#pragma once
+#include <array>
+#include <string>
+#include <vector>
+
+#include "gdr/progress.h"
+#include "gdr/pslg.h"
+#include "mesh3d/host_mesh.h"
+
+namespace gdr::cdt3d {
+
+// A checked piecewise linear complex. Points keep the input order, with exact duplicates
+// merged into their first occurrence.
+struct Plc {
+  std::vector<Point3> points;
+  std::vector<int> point_map;                    // input point -> PLC point
+  std::vector<std::array<int, 3>> triangles;     // duplicate triangles removed
+  std::vector<int> triangle_origin;              // PLC triangle -> input triangle
+  std::vector<int> triangle_facet;               // PLC triangle -> facet id (dense, from 0)
+  std::vector<int> facet_origin;                 // facet id -> the input facet id it reports
+  std::vector<std::array<int, 2>> segments;      // every edge that must stay an edge: facet
+                                                 // boundaries, edges of 3+ triangles, and the
+                                                 // input's own segments (PLC point ids)
+  std::vector<Point3> holes;
+  std::vector<RegionSeed> regions;
+  long long duplicate_points_merged = 0;
+  long long duplicate_triangles_merged = 0;
+  double volume = 0;                             // volume enclosed by the surface
+};
+
+struct CheckOptions {
+  bool require_closed = true;  // false: open surfaces pass (the restricted mesher)
+};
+
+// Checks `surface` and cleans it into a Plc. Throws Error(InvalidInput) for NaN/Inf
+// coordinates, fewer than four non-coplanar points, out-of-range or degenerate faces, open
+// boundaries (listing boundary edges) and non-manifold configurations, and
+// Error(SelfIntersectingInput) naming the first pairs of intersecting faces. Messages name
+// at most a few items plus a count, numbered as in the input. Merged duplicates go to
+// callbacks.warning.
+Plc check_surface(const Surface& surface, const CheckOptions& options = {},
+                  const Callbacks& callbacks = {});
+
+// The constrained Delaunay tetrahedralization of `plc` (TetGen, boundary recovery with
+// Steiner points where needed), holes and exterior removed, region attributes assigned.
+// Throws Error(InvalidInput) when TetGen cannot recover the boundary.
+m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks = {});
+
+}  // namespace gdr::cdt3d
