@@ -1,0 +1,576 @@
+// Concurrent point insertion into a constrained Delaunay tetrahedralization: the paper's
+// section 6.3-6.5 (grow cavities with ExpandList, filter dependent points, remesh), written
+// once as host+device functors for both execution spaces.
+//
+// A point p to insert comes with where it was located (`Candidate`). Its cavity is grown by
+// the Bowyer-Watson rule (tetrahedra whose circumsphere strictly holds p) without crossing
+// subfaces; the tetrahedra holding p, and for points on segments or facets those around the
+// split subsegment or subface, are in by force. Points on a facet (or a segment) also grow a
+// subface cavity in the facet: subfaces whose circumcircle holds p, across edges that are not
+// subsegments; the tetrahedra on both sides of such a subface are in by force. Each element a
+// cavity takes is claimed with an atomic priority mark (S3); a point that loses a claim
+// waits for a later iteration. Then every cavity is checked exactly: each boundary face must
+// see p strictly on its inner side, so that p joined to the boundary gives positive
+// tetrahedra. Cavities that touch go in together when each shared face stays locally
+// Delaunay.
+#pragma once
+#include "exec/priority.h"
+#include "mesh3d/mesh3d.h"
+
+namespace gdr::m3d {
+
+using exec::u64;
+
+// What a point splits. kSegmentSplit: the subsegment (a, b), which is edge ek of tetrahedron
+// `start`; kFacetSplit: subface `sub` (face ek of `start`), p lies in it; kFreePoint: p lies
+// in tetrahedron `start`.
+enum : signed char { kDropped = -1, kSegmentSplit = 0, kFacetSplit = 1, kFreeSplit = 2 };
+
+struct Candidate {
+  double p[3];
+  u64 prio;
+  int start;
+  int sub;
+  int a, b;
+  signed char kind;
+  signed char ek;
+};
+
+struct PrioOf {
+  const Candidate* cand;
+  GDR_HD_INLINE u64 operator()(int k) const { return cand[k].prio; }
+};
+
+// ExpandList tuples: (point, element). The element is a tetrahedron, or a subface with
+// kSubTuple set. The state's low bits are inputs; the result goes above kResultShift.
+struct CavityTuple {
+  int pt;
+  int elem;
+  int state;
+};
+enum : int { kForceIn = 1, kSubTuple = 2, kResultShift = 2 };
+enum : int { kPending = 0, kCavity = 1, kRing = 2, kDup = 3, kLost = 4, kStale = 5 };
+
+GDR_HD_INLINE int result_of(const CavityTuple& h) { return h.state >> kResultShift; }
+GDR_HD_INLINE void set_result(CavityTuple& h, int r) {
+  h.state = (h.state & ((1 << kResultShift) - 1)) | (r << kResultShift);
+}
+GDR_HD_INLINE bool is_sub_tuple(const CavityTuple& h) { return (h.state & kSubTuple) != 0; }
+
+GDR_HD_INLINE bool face_has(const TetView& m, int t, int f, int v) {
+  const int c = corner_of(m, t, v);
+  return c >= 0 && c != f;
+}
+
+// A tetrahedron on one side of subface s (its face), for tests on s.
+GDR_HD_INLINE int subface_tet(const TetView& m, int s) {
+  return m.st[2 * s] >= 0 ? m.st[2 * s] >> 2 : m.st[2 * s + 1] >> 2;
+}
+
+// Is the edge xy of subface s a subsegment? (Read off a tetrahedron on one side.)
+GDR_HD_INLINE bool subface_edge_is_subseg(const TetView& m, int s, int x, int y) {
+  return is_subseg(m, subface_tet(m, s), x, y);
+}
+
+// p strictly inside the circumcircle of subface s, decided on a tetrahedron beside it (for
+// p on the facet's plane the two agree: the sphere meets the plane in that circle).
+GDR_HD_INLINE bool subface_conflict(const TetView& m, int s, const double* p) {
+  return tet_insphere(m, subface_tet(m, s), p) > 0;
+}
+
+// ExpandList step (Algorithm 4 with the paper's growing rules). Writes up to 5 tuples.
+struct GrowCavity {
+  TetView m;
+  const Candidate* cand;
+  int* failed;
+  static constexpr int K = 5;
+
+  GDR_HD int operator()(long long, CavityTuple& h, CavityTuple* out) const {
+    const Candidate& c = cand[h.pt];
+    if (exec::volatile_load(&failed[h.pt])) {
+      set_result(h, kStale);
+      return 0;
+    }
+    return is_sub_tuple(h) ? grow_subface(h, c, out) : grow_tet(h, c, out);
+  }
+
+  GDR_HD int claim(int* slot, CavityTuple& h, const Candidate& c) const {
+    const int r = exec::claim(slot, h.pt, c.prio, PrioOf{cand});
+    if (r < 0) {
+      failed[h.pt] = 1;
+      set_result(h, kLost);
+    } else if (r == 0) {
+      set_result(h, kDup);
+    } else {
+      set_result(h, kCavity);
+    }
+    return r;
+  }
+
+  // Ruppert / Shewchuk: a point that would encroach a subsegment is not inserted; the
+  // subsegment is split first (flagged for the next iteration). Points on segments are
+  // always inserted.
+  GDR_HD bool encroaches_subsegment(int t, const Candidate& c) const {
+    if (c.kind == kSegmentSplit) return false;
+    const int flags = m.tflag[t];
+    if (!(flags & kSegBits)) return false;
+    for (int e = 0; e < 6; ++e) {
+      if (!(flags & (kSeg0 << e))) continue;
+      const int a = m.tv[4 * t + edge_corner(e, 0)], b = m.tv[4 * t + edge_corner(e, 1)];
+      if (pred::in_diametral_sphere(pt(m, a), pt(m, b), c.p) > 0) {
+        exec::atomic_or(&m.tflag[t], kSplitEdge0 << e);
+        return true;
+      }
+    }
+    return false;
+  }
+
+  GDR_HD int grow_tet(CavityTuple& h, const Candidate& c, CavityTuple* out) const {
+    const int t = h.elem;
+    if (!(h.state & kForceIn) && !(tet_insphere(m, t, c.p) > 0)) {
+      set_result(h, kRing);
+      return 0;
+    }
+    if (claim(&m.mark[t], h, c) <= 0) return 0;
+    if (encroaches_subsegment(t, c)) {
+      failed[h.pt] = 1;
+      return 0;
+    }
+    int n = 0;
+    for (int f = 0; f < 4; ++f) {
+      const bool at_split = c.kind == kSegmentSplit && face_has(m, t, f, c.a) && face_has(m, t, f, c.b);
+      const int s = m.tsub[4 * t + f];
+      if (s >= 0) {
+        // A free point that would encroach a subface is not inserted: the subface first.
+        if (c.kind == kFreeSplit) {
+          const int* q = m.tv + 4 * t;
+          if (in_diametral_ball(pt(m, q[face_corner(f, 0)]), pt(m, q[face_corner(f, 1)]),
+                                pt(m, q[face_corner(f, 2)]), c.p)) {
+            exec::atomic_or(&m.tflag[t], kSplitFace0 << f);
+            failed[h.pt] = 1;
+            return n;
+          }
+        }
+        if (at_split) out[n++] = CavityTuple{h.pt, s, kSubTuple | kForceIn};
+        continue;  // subfaces are walls; the subface cavity crosses them
+      }
+      const int nb = m.tn[4 * t + f];
+      if (nb >= 0) out[n++] = CavityTuple{h.pt, nb >> 2, at_split ? kForceIn : 0};
+    }
+    return n;
+  }
+
+  GDR_HD int grow_subface(CavityTuple& h, const Candidate& c, CavityTuple* out) const {
+    const int s = h.elem;
+    if (!(h.state & kForceIn) && !subface_conflict(m, s, c.p)) {
+      set_result(h, kRing);
+      return 0;
+    }
+    if (claim(&m.smark[s], h, c) <= 0) return 0;
+    int n = 0;
+    for (int side = 0; side < 2; ++side) {
+      const int tf = m.st[2 * s + side];
+      if (tf >= 0) out[n++] = CavityTuple{h.pt, tf >> 2, kForceIn};
+    }
+    const int st0 = subface_tet(m, s);
+    for (int e = 0; e < 3; ++e) {
+      const int x = m.sv[3 * s + (e + 1) % 3], y = m.sv[3 * s + (e + 2) % 3];
+      const int ce = edge_index(corner_of(m, st0, x), corner_of(m, st0, y));
+      if (is_subseg_edge(m, st0, ce)) {
+        if (c.kind == kFacetSplit && pred::in_diametral_sphere(pt(m, x), pt(m, y), c.p) > 0) {
+          exec::atomic_or(&m.tflag[st0], kSplitEdge0 << ce);
+          failed[h.pt] = 1;
+          return n;
+        }
+        continue;
+      }
+      const int ns = subface_across(m, s, x, y);
+      if (ns >= 0) out[n++] = CavityTuple{h.pt, ns, kSubTuple};
+    }
+    return n;
+  }
+};
+
+// The new tetrahedron on face f of cavity tetrahedron t is (face corners, p): its insphere.
+GDR_HD_INLINE double new_tet_insphere(const TetView& m, int t, int f, const double* p,
+                                      const double* q) {
+  const int* v = m.tv + 4 * t;
+  return pred::insphere(pt(m, v[face_corner(f, 0)]), pt(m, v[face_corner(f, 1)]),
+                        pt(m, v[face_corner(f, 2)]), p, q);
+}
+
+// Marks that did not survive mean a higher point overlaps: drop this one. A ring
+// tetrahedron (just outside the cavity) held by a higher point's cavity means the two
+// cavities touch: both fans then meet across the shared faces, and both points go in together
+// only if each shared face that is not a subface stays locally Delaunay (the other point
+// outside the sphere of our new tetrahedron on it).
+struct VerifyClaims {
+  TetView m;
+  const Candidate* cand;
+  const CavityTuple* tuples;
+  int* failed;
+  bool touching;  // false: any contact with a higher cavity drops this point
+  GDR_HD void operator()(long long i) const {
+    const CavityTuple& h = tuples[i];
+    const int r = result_of(h);
+    if (is_sub_tuple(h)) {
+      if (r == kCavity && m.smark[h.elem] != h.pt + 1) failed[h.pt] = 1;
+      return;
+    }
+    if (r == kCavity && m.mark[h.elem] != h.pt + 1) failed[h.pt] = 1;
+    if (r != kRing) return;
+    const int u = h.elem, other = m.mark[u];
+    if (!exec::held_above(other, h.pt, cand[h.pt].prio, PrioOf{cand})) return;
+    if (!touching) {
+      failed[h.pt] = 1;
+      return;
+    }
+    const double* q = cand[other - 1].p;
+    for (int g = 0; g < 4; ++g) {
+      const int nb = m.tn[4 * u + g];
+      if (nb < 0 || m.tsub[4 * u + g] >= 0 || m.mark[nb >> 2] != h.pt + 1) continue;
+      if (new_tet_insphere(m, nb >> 2, nb & 3, cand[h.pt].p, q) > 0) failed[h.pt] = 1;
+    }
+  }
+};
+
+struct SetInCavity {
+  TetView m;
+  const CavityTuple* tuples;
+  const int* failed;
+  int value;  // 1: set for winners, 0: clear for points dropped after marking
+  GDR_HD void operator()(long long i) const {
+    const CavityTuple& h = tuples[i];
+    if (result_of(h) != kCavity) return;
+    int* flag = is_sub_tuple(h) ? &m.sflag[h.elem] : &m.tflag[h.elem];
+    const int bit = is_sub_tuple(h) ? int(kSubInCavity) : int(kInCavity);
+    const int* mark = is_sub_tuple(h) ? &m.smark[h.elem] : &m.mark[h.elem];
+    if (value && !failed[h.pt]) *flag |= bit;
+    // Only the owner of the mark may clear: a failed point's tuple can name an element that
+    // a winner took over. A subface also loses its fan edges (MarkSubfaceFans).
+    if (!value && failed[h.pt] && *mark == h.pt + 1)
+      *flag &= is_sub_tuple(h) ? ~(bit | (7 * kSubFanEdge0)) : ~bit;
+  }
+};
+
+// Face f of cavity tetrahedron t of point j: interior to the cavity, a face of the split
+// subface cavity (replaced by new subfaces, no new tetrahedron on it), or a boundary face
+// that gets a new tetrahedron (p, face).
+enum : int { kFaceInterior = 0, kFaceFan = 1, kFaceSplit = 2 };
+
+GDR_HD_INLINE int cavity_face(const TetView& m, int j, int t, int f) {
+  const int s = m.tsub[4 * t + f];
+  if (s >= 0)
+    return (m.sflag[s] & kSubInCavity) && m.smark[s] == j + 1 ? kFaceSplit : kFaceFan;
+  const int nb = m.tn[4 * t + f];
+  if (nb >= 0 && (m.tflag[nb >> 2] & kInCavity) && m.mark[nb >> 2] == j + 1) return kFaceInterior;
+  return kFaceFan;
+}
+
+// Edge e (opposite vertex e) of a subface in the split subface cavity of point j: does it
+// bound the subface cavity, so that a new subface (p, edge) replaces the old one there?
+// The split subsegment itself does not (p lies on it). Decided once by MarkSubfaceFans,
+// before any link changes, and read back from the subface's flags.
+GDR_HD_INLINE bool compute_subface_fan_edge(const TetView& m, const Candidate& c, int j, int s,
+                                            int e) {
+  const int x = m.sv[3 * s + (e + 1) % 3], y = m.sv[3 * s + (e + 2) % 3];
+  if (c.kind == kSegmentSplit && ((x == c.a && y == c.b) || (x == c.b && y == c.a))) return false;
+  if (subface_edge_is_subseg(m, s, x, y)) return true;
+  const int ns = subface_across(m, s, x, y);
+  return !(ns >= 0 && (m.sflag[ns] & kSubInCavity) && m.smark[ns] == j + 1);
+}
+
+GDR_HD_INLINE bool subface_fan_edge(const TetView& m, int s, int e) {
+  return (m.sflag[s] & (kSubFanEdge0 << e)) != 0;
+}
+
+struct MarkSubfaceFans {
+  TetView m;
+  const Candidate* cand;
+  const CavityTuple* tuples;
+  const int* failed;
+  GDR_HD void operator()(long long i) const {
+    const CavityTuple& h = tuples[i];
+    if (!is_sub_tuple(h) || result_of(h) != kCavity || failed[h.pt]) return;
+    int bits = 0;
+    for (int e = 0; e < 3; ++e)
+      if (compute_subface_fan_edge(m, cand[h.pt], h.pt, h.elem, e)) bits |= kSubFanEdge0 << e;
+    m.sflag[h.elem] |= bits;
+  }
+};
+
+// Last exact checks before anything is written: every new tetrahedron must be positive, and
+// a split subface must have its tetrahedra in the cavity.
+struct CheckCavity {
+  TetView m;
+  const Candidate* cand;
+  const CavityTuple* tuples;
+  int* failed;
+  GDR_HD void operator()(long long i) const {
+    const CavityTuple& h = tuples[i];
+    if (is_sub_tuple(h) || result_of(h) != kCavity || failed[h.pt]) return;
+    const Candidate& c = cand[h.pt];
+    const int t = h.elem;
+    for (int f = 0; f < 4; ++f) {
+      const int k = cavity_face(m, h.pt, t, f);
+      if (k == kFaceFan) {
+        if (!(face_orient(m, t, f, c.p) > 0)) failed[h.pt] = 1;
+      } else if (k == kFaceSplit) {
+        const int nb = m.tn[4 * t + f];
+        if (nb >= 0 && !((m.tflag[nb >> 2] & kInCavity) && m.mark[nb >> 2] == h.pt + 1))
+          failed[h.pt] = 1;
+      }
+    }
+  }
+};
+
+// New elements: counted per cavity tetrahedron (its fan faces) and per split subface (its
+// fan edges), in two counts so that two scans give each its first slot; StoreSlotBase
+// keeps that slot in aux (tetrahedra) or saux (subfaces).
+struct CountNew {
+  TetView m;
+  const CavityTuple* tuples;
+  const int* failed;
+  int* tet_count;
+  int* sub_count;
+  GDR_HD void operator()(long long i) const {
+    const CavityTuple& h = tuples[i];
+    int nt = 0, ns = 0;
+    if (result_of(h) == kCavity && !failed[h.pt]) {
+      if (is_sub_tuple(h)) {
+        for (int e = 0; e < 3; ++e) ns += subface_fan_edge(m, h.elem, e);
+      } else {
+        for (int f = 0; f < 4; ++f) nt += cavity_face(m, h.pt, h.elem, f) == kFaceFan;
+      }
+    }
+    tet_count[i] = nt;
+    sub_count[i] = ns;
+  }
+};
+
+struct StoreSlotBase {
+  TetView m;
+  const CavityTuple* tuples;
+  const int* failed;
+  const int* tet_offset;
+  const int* sub_offset;
+  int old_ntet, old_nsub;
+  GDR_HD void operator()(long long i) const {
+    const CavityTuple& h = tuples[i];
+    if (result_of(h) != kCavity || failed[h.pt]) return;
+    if (is_sub_tuple(h)) m.saux[h.elem] = old_nsub + sub_offset[i];
+    else m.aux[h.elem] = old_ntet + tet_offset[i];
+  }
+};
+
+GDR_HD_INLINE int fan_rank(const TetView& m, int j, int t, int f) {
+  int r = 0;
+  for (int g = 0; g < f; ++g) r += cavity_face(m, j, t, g) == kFaceFan;
+  return r;
+}
+
+GDR_HD_INLINE int subfan_rank(const TetView& m, int s, int e) {
+  int r = 0;
+  for (int k = 0; k < e; ++k) r += subface_fan_edge(m, s, k);
+  return r;
+}
+
+// Remesh (section 6.5): one new tetrahedron (a, b, c, p) per fan face (a, b, c), linked
+// to the tetrahedron outside the cavity (or to the other winner's new tetrahedron there);
+// the links between new tetrahedra come in LinkNew.
+struct CreateTets {
+  TetView m;
+  const Candidate* cand;
+  const CavityTuple* tuples;
+  const int* failed;
+  const int* point_id;
+  GDR_HD void operator()(long long i) const {
+    const CavityTuple& h = tuples[i];
+    if (is_sub_tuple(h) || result_of(h) != kCavity || failed[h.pt]) return;
+    const Candidate& c = cand[h.pt];
+    const int t = h.elem, p = point_id[h.pt];
+    const int tflags = m.tflag[t];
+    int r = 0;
+    for (int f = 0; f < 4; ++f) {
+      if (cavity_face(m, h.pt, t, f) != kFaceFan) continue;
+      const int nt = m.aux[t] + r++;
+      int* nv = m.tv + 4 * nt;
+      int corner[3];
+      for (int k = 0; k < 3; ++k) {
+        corner[k] = face_corner(f, k);
+        nv[k] = m.tv[4 * t + corner[k]];
+      }
+      nv[3] = p;
+      const int outer = m.tn[4 * t + f];
+      if (outer >= 0 && (m.tflag[outer >> 2] & kInCavity)) {
+        // Another winner's cavity is across: link to its new tetrahedron on this face (it
+        // links back the same way). Its slot: its new-index base + the face's fan rank.
+        const int u = outer >> 2, q = m.mark[u] - 1;
+        const int other = m.aux[u] + fan_rank(m, q, u, outer & 3);
+        m.tn[4 * nt + 3] = 4 * other + 3;
+      } else {
+        m.tn[4 * nt + 3] = outer;
+        if (outer >= 0) m.tn[outer] = 4 * nt + 3;
+      }
+      const int s = m.tsub[4 * t + f];
+      m.tsub[4 * nt + 3] = s;
+      if (s >= 0) {
+        for (int side = 0; side < 2; ++side)
+          if (m.st[2 * s + side] == 4 * t + f) m.st[2 * s + side] = 4 * nt + 3;
+      }
+      for (int k = 0; k < 3; ++k) {
+        m.tn[4 * nt + k] = -1;
+        m.tsub[4 * nt + k] = -1;
+      }
+      // Edges of the old face keep their subsegment and split flags; an edge (corner, p)
+      // is a subsegment when p splits a subsegment ending at that corner.
+      int flags = kFresh;
+      for (int k = 0; k < 3; ++k) {
+        const int e_new = edge_index(k, (k + 1) % 3);
+        const int e_old = edge_index(corner[k], corner[(k + 1) % 3]);
+        if (tflags & (kSeg0 << e_old)) flags |= kSeg0 << e_new;
+        if (tflags & (kSplitEdge0 << e_old)) flags |= kSplitEdge0 << e_new;
+        if (c.kind == kSegmentSplit && (nv[k] == c.a || nv[k] == c.b))
+          flags |= kSeg0 << edge_index(k, 3);
+      }
+      if (tflags & (kSplitFace0 << f)) flags |= kSplitFace0 << 3;
+      m.tflag[nt] = flags;
+      m.mark[nt] = 0;
+      if (m.tregion) m.tregion[nt] = m.tregion[t];
+    }
+  }
+};
+
+// New subfaces: (p replacing vertex e) of each split subface, per fan edge e; same facet.
+// Their tetrahedron links are filled by LinkNew.
+struct CreateSubfaces {
+  TetView m;
+  const CavityTuple* tuples;
+  const int* failed;
+  const int* point_id;
+  GDR_HD void operator()(long long i) const {
+    const CavityTuple& h = tuples[i];
+    if (!is_sub_tuple(h) || result_of(h) != kCavity || failed[h.pt]) return;
+    const int s = h.elem, p = point_id[h.pt];
+    int r = 0;
+    for (int e = 0; e < 3; ++e) {
+      if (!subface_fan_edge(m, s, e)) continue;
+      const int ns = m.saux[s] + r++;
+      for (int k = 0; k < 3; ++k) m.sv[3 * ns + k] = k == e ? p : m.sv[3 * s + k];
+      m.st[2 * ns] = m.st[2 * ns + 1] = -1;
+      m.sfacet[ns] = m.sfacet[s];
+      m.sflag[ns] = 0;
+      m.smark[ns] = 0;
+    }
+  }
+};
+
+// Which side of subface s the face (a, b, c) (outside-counter-clockwise for its tetrahedron)
+// is on: 0 when it turns the same way as (sv0, sv1, sv2), else 1 (host_mesh.h).
+GDR_HD_INLINE int subface_side(const TetView& m, int s, int a, int b) {
+  const int* v = m.sv + 3 * s;
+  const bool same = (a == v[0] && b == v[1]) || (a == v[1] && b == v[2]) || (a == v[2] && b == v[0]);
+  return same ? 0 : 1;
+}
+
+// Links the three faces at p of every new tetrahedron: turning around the face's old edge
+// xy through the cavity, from the cavity tetrahedron it was built on, to the next fan face at
+// xy; crossing a split subface on the way means the face (x, y, p) is a new subface.
+struct LinkNew {
+  TetView m;
+  const CavityTuple* tuples;
+  const int* failed;
+  int* error;
+  GDR_HD void operator()(long long i) const {
+    const CavityTuple& h = tuples[i];
+    if (is_sub_tuple(h) || result_of(h) != kCavity || failed[h.pt]) return;
+    const int t = h.elem;
+    int r = 0;
+    for (int f = 0; f < 4; ++f) {
+      if (cavity_face(m, h.pt, t, f) != kFaceFan) continue;
+      const int nt = m.aux[t] + r++;
+      for (int k = 0; k < 3; ++k) link_face(h.pt, t, f, nt, k);
+    }
+  }
+
+  // Face k of new tetrahedron nt (opposite its corner k, so it holds p and the old edge
+  // between the other two corners).
+  GDR_HD void link_face(int j, int t, int f, int nt, int k) const {
+    const int x = m.tv[4 * nt + (k + 1) % 3], y = m.tv[4 * nt + (k + 2) % 3];
+    int u = t, g = f, new_sub = -1;
+    for (int guard = 0; guard < 4096; ++guard) {
+      const int g2 = other_face_at_edge(m, u, g, x, y);
+      const int kind = cavity_face(m, j, u, g2);
+      if (kind == kFaceFan) {
+        const int other = m.aux[u] + fan_rank(m, j, u, g2);
+        // In the other new tetrahedron (corners of face g2, p) the face at xy is opposite
+        // the corner that is neither x nor y.
+        int ko = 0;
+        for (int q = 0; q < 3; ++q) {
+          const int v = m.tv[4 * u + face_corner(g2, q)];
+          if (v != x && v != y) ko = q;
+        }
+        m.tn[4 * nt + k] = 4 * other + ko;
+        set_subface(nt, k, new_sub);
+        return;
+      }
+      if (kind == kFaceSplit) {
+        const int s = m.tsub[4 * u + g2];
+        int e = 0;  // the edge xy of s
+        for (int q = 0; q < 3; ++q) {
+          const int v = m.sv[3 * s + q];
+          if (v != x && v != y) e = q;
+        }
+        new_sub = m.saux[s] + subfan_rank(m, s, e);
+      }
+      const int nb = m.tn[4 * u + g2];
+      if (nb < 0) {  // the domain boundary: a split boundary subface
+        m.tn[4 * nt + k] = -1;
+        set_subface(nt, k, new_sub);
+        if (new_sub < 0) *error = 1;
+        return;
+      }
+      u = nb >> 2;
+      g = nb & 3;
+    }
+    *error = 1;
+  }
+
+  GDR_HD void set_subface(int nt, int k, int s) const {
+    if (s < 0) return;
+    m.tsub[4 * nt + k] = s;
+    const int* v = m.tv + 4 * nt;
+    const int side = subface_side(m, s, v[face_corner(k, 0)], v[face_corner(k, 1)]);
+    m.st[2 * s + side] = 4 * nt + k;
+  }
+};
+
+struct KillCavity {
+  TetView m;
+  const CavityTuple* tuples;
+  const int* failed;
+  GDR_HD void operator()(long long i) const {
+    const CavityTuple& h = tuples[i];
+    if (result_of(h) != kCavity || failed[h.pt]) return;
+    if (is_sub_tuple(h)) m.sflag[h.elem] = kSubDead;
+    else m.tflag[h.elem] = kDead;
+  }
+};
+
+struct WritePoints {
+  TetView m;
+  const Candidate* cand;
+  const int* failed;
+  const int* point_id;
+  GDR_HD void operator()(long long j) const {
+    if (failed[j]) return;
+    const Candidate& c = cand[j];
+    const int p = point_id[j];
+    for (int k = 0; k < 3; ++k) m.xyz[3 * p + k] = c.p[k];
+    m.ptype[p] = c.kind == kSegmentSplit ? kSegmentPoint : (c.kind == kFacetSplit ? kFacetPoint : kFreePoint);
+    m.pseg[p] = c.kind == kSegmentSplit ? segment_of(m, c.a, c.b) : -1;
+    m.pfacet[p] = c.kind == kFacetSplit ? m.sfacet[c.sub] : -1;
+  }
+};
+
+}  // namespace gdr::m3d

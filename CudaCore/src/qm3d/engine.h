@@ -1,0 +1,403 @@
+// gQM3d refinement loop (paper Algorithm 3), written once for any execution space.
+// engine_cpu.cpp instantiates it for OpenMP, engine_cuda.cu for CUDA.
+#pragma once
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "exec/algorithms.h"
+#include "exec/host_vector.h"
+#include "gdr/progress.h"
+#include "gdr/qm3d.h"
+#include "mesh3d/cavity.h"
+#include "mesh3d/compact.h"
+#include "mesh3d/mesh3d.h"
+#include "qm3d/kernels.h"
+
+namespace gdr::qm3d {
+
+// The paper's design strategies and two of ours, each of which can be switched off to
+// measure what it buys (benchmarks only: GDR_DISABLE, see quality_tet_mesh.cpp).
+struct Strategies {
+  bool compaction = true;    // S1: compact dead elements during refinement, not only at the end
+  bool filtering = true;     // S3: one splitting point per tetrahedron before growing cavities
+  bool deferment = true;     // S5: defer cavities still growing after a few rounds
+  bool touching = true;      // cavities that touch go in together when the mesh stays Delaunay
+  bool block_rounds = true;  // small ExpandList windows run their rounds inside one GPU block
+};
+
+struct EngineParams {
+  Criteria criteria;
+  long long max_steiner = -1;  // -1: unlimited
+  int max_iterations = 100000;
+  Strategies strategies;
+  bool check_links = false;  // tests: check every link of the mesh after each iteration
+};
+
+struct EngineResult {
+  int iterations = 0;
+  long long inserted = 0;
+  bool cap_reached = false;
+  bool stalled = false;
+  std::size_t peak_bytes = 0;
+  std::vector<PhaseTime> phases;
+};
+
+// The final mesh, live elements only, in the forms the facade reports.
+struct MeshResult {
+  exec::HostVector<double> xyz;          // 3 per point
+  exec::HostVector<std::uint8_t> ptype;  // per point
+  exec::HostVector<int> tv;              // 4 per tetrahedron
+  exec::HostVector<int> tregion;         // per tetrahedron (empty without regions)
+  exec::HostVector<int> sv;              // 3 per subface
+  exec::HostVector<int> sfacet;          // per subface
+  exec::HostVector<int> subseg;          // 3 per subsegment: its two vertices and its segment
+  exec::HostVector<int> bad;             // tetrahedra left bad
+  int tets() const { return static_cast<int>(tv.size() / 4); }
+  int points() const { return static_cast<int>(ptype.size()); }
+};
+
+template <class Space>
+EngineResult refine_mesh(const m3d::HostTetMesh& mesh, MeshResult& out, const EngineParams& params,
+                         const Callbacks& cb);
+
+namespace detail {
+
+class PhaseClock {
+ public:
+  explicit PhaseClock(std::vector<PhaseTime>& phases) : phases_(phases) {}
+  template <class Space>
+  void stop(const char* name) {
+    exec::Ops<Space>::synchronize();
+    const auto now = std::chrono::steady_clock::now();
+    const double s = std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+    for (auto& p : phases_)
+      if (p.name == name) {
+        p.seconds += s;
+        return;
+      }
+    phases_.push_back(PhaseTime{name, s});
+  }
+  void restart() { last_ = std::chrono::steady_clock::now(); }
+
+ private:
+  std::vector<PhaseTime>& phases_;
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+}  // namespace detail
+
+// One refinement run. run() is the paper's Algorithm 3; each method is one of its lines.
+// (Public members only: nvcc's device lambdas may not live in private member functions.)
+template <class Space>
+struct Engine {
+  using Ops = exec::Ops<Space>;
+  template <class T>
+  using Buf = exec::Buffer<Space, T>;
+  using Tuple = m3d::CavityTuple;
+
+  const EngineParams& params;
+  const Callbacks& cb;
+  EngineResult res;
+  detail::PhaseClock clock{res.phases};
+  m3d::DeviceTetMesh<Space> dm;
+  Buf<int> list, failed, point_id, count, count2, counters;
+  Buf<Candidate> cand_all, cand;  // all splitting points, then the filtered ones
+  Buf<Tuple> tuples;
+  bool allow_deferment = true;
+  long long dead_tets = 0, dead_subs = 0;  // since the last compaction
+  int rounds = 0;                          // ExpandList rounds of the last cavity phase
+  const bool trace = std::getenv("GDR_TRACE") != nullptr;
+
+  // counters: [0] broken link found while remeshing, [1] tetrahedra killed, [2] subfaces killed
+  enum { kError = 0, kKilledTets = 1, kKilledSubs = 2, kCounters = 3 };
+
+  Engine(const EngineParams& p, const Callbacks& c) : params(p), cb(c) {}
+
+  void run(const m3d::HostTetMesh& host, MeshResult& out) {
+    exec::memory_counter<Space>().peak = exec::memory_counter<Space>().current;
+    const std::size_t mem_base = exec::memory_counter<Space>().current;
+    dm.upload(host);
+    counters.resize_discard(kCounters);
+    counters.zero();
+    clock.template stop<Space>("upload");
+    int idle = 0;
+    for (int iter = 0; iter < params.max_iterations; ++iter) {
+      if (cb.abort && cb.abort()) throw Error(Status::Aborted, "refinement aborted by the caller");
+      clock.restart();
+      const std::size_t nl = collect();                 // line 4
+      if (nl == 0) break;                               // line 10
+      res.iterations = iter + 1;
+      compute_splitting_points(nl, iter);               // line 6
+      const std::size_t ns = filter(nl);                // line 7 (S1, S3)
+      grow_cavities(ns);                                // line 8 (S2, S5)
+      const long long won = verify_and_number(ns);      // line 8: filter dependent points
+      if (won > 0) {
+        insert(ns, won);                                // line 9
+        idle = 0;
+      } else if (++idle >= 3) {
+        res.stalled = true;
+        break;
+      }
+      if (cb.progress)
+        cb.progress(0.0, "iteration " + std::to_string(iter + 1) + ": " + std::to_string(nl) +
+                             " elements to split, " + std::to_string(won) + " points inserted");
+      if (trace)
+        std::fprintf(stderr,
+                     "gdr-trace iter %d: tets %d, subfaces %d, points %d, elements %zu, "
+                     "candidates %zu, won %lld, rounds %d, tuples %zu, MB %.1f (peak %.1f)\n",
+                     iter + 1, dm.ntet, dm.nsub, dm.npts, nl, ns, won, rounds, tuples.size(),
+                     exec::memory_counter<Space>().current / 1048576.0,
+                     exec::memory_counter<Space>().peak / 1048576.0);
+      if (params.check_links) {
+        m3d::compact(dm);
+        m3d::check_host_mesh(dm.to_host(host.input_points));
+      }
+      if (res.cap_reached) break;
+    }
+    download(out);
+    res.peak_bytes = exec::memory_counter<Space>().peak - mem_base;
+  }
+
+  // Line 4: encroached subsegments, encroached subfaces and bad tetrahedra in one list (S1,
+  // S4). Each tetrahedron keeps an 11-bit mask in its flags and its entry count in aux; the
+  // in-place scan of the counts places the entries (t*16 + slot).
+  std::size_t collect() {
+    Ops::for_each(dm.ntet, CollectMask{dm.view(), params.criteria});
+    int* cnt = dm.aux.data();
+    const std::size_t nl = static_cast<std::size_t>(Ops::exclusive_scan(cnt, cnt, dm.ntet));
+    list.resize_discard(nl);
+    if (nl) Ops::for_each(dm.ntet, ExpandElements{dm.view(), list.data()});
+    clock.template stop<Space>("collect");
+    return nl;
+  }
+
+  // Line 6: splitting points, priorities and point location.
+  void compute_splitting_points(std::size_t nl, int iter) {
+    cand_all.resize_discard(nl);
+    Ops::for_each(nl, ComputeSplittingPoints{dm.view(), params.criteria, list.data(), cand_all.data(),
+                                             0x9e3779b9u * static_cast<unsigned>(iter + 1)});
+    clock.template stop<Space>("split+locate");
+  }
+
+  // Line 7 (S3): one splitting point per tetrahedron, by priority marks. When far more
+  // elements are bad than can win at once (the first iterations), only a random share of
+  // them competes, at most a quarter of the tetrahedron count.
+  std::size_t filter(std::size_t nl) {
+    dm.mark.zero();
+    const Candidate* ca = cand_all.data();
+    const int* mk = dm.mark.data();
+    const double share = std::min(1.0, (dm.ntet / 4.0 + 4096.0) / static_cast<double>(nl));
+    const u64 keep_below = static_cast<u64>(share * 4294967296.0);
+    const bool filtering = params.strategies.filtering;
+    if (filtering) Ops::for_each(nl, ClaimStart{dm.view(), ca, keep_below});
+    const std::size_t ns = exec::compact_indices<Space>(
+        nl,
+        [=] GDR_HD(long long j) {
+          const Candidate& c = ca[j];
+          if (c.kind < 0) return false;
+          return filtering ? mk[c.start] == j + 1 : exec::priority_id(c.prio) < keep_below;
+        },
+        list, count);
+    cand.resize_discard(ns);
+    Candidate* cs = cand.data();
+    const int* sel = list.data();
+    Ops::for_each(ns, [=] GDR_HD(long long j) { cs[j] = ca[sel[j]]; });
+    cand_all.release();  // device memory: only the survivors are needed from here on
+    list.release();
+    dm.mark.zero();  // survivors now claim their cavities from scratch
+    dm.smark.zero();
+    clock.template stop<Space>("filter");
+    return ns;
+  }
+
+  // Line 8, growing (S2, S5): cavities by ExpandList from the tetrahedron holding the point,
+  // or, for a point on a facet, from the subface holding it. Stragglers are deferred.
+  void grow_cavities(std::size_t ns) {
+    failed.resize_discard(ns);
+    failed.zero();
+    tuples.resize_discard(ns);
+    const Candidate* cs = cand.data();
+    Tuple* tp = tuples.data();
+    Ops::for_each(ns, [=] GDR_HD(long long j) {
+      const Candidate& c = cs[j];
+      tp[j] = c.kind == m3d::kFacetSplit
+                  ? Tuple{static_cast<int>(j), c.sub, m3d::kSubTuple | m3d::kForceIn}
+                  : Tuple{static_cast<int>(j), c.start, m3d::kForceIn};
+    });
+    exec::ExpandListLimits lim;
+    if (allow_deferment && params.strategies.deferment) {
+      lim.defer_after_rounds = 16;
+      lim.defer_below = ns / 64 + 32;
+    }
+    lim.block_rounds = params.strategies.block_rounds;
+    const exec::ExpandListResult er = exec::expand_list<Space, m3d::GrowCavity::K>(
+        tuples, ns, m3d::GrowCavity{dm.view(), cand.data(), failed.data()}, lim);
+    // Deferred cavities must finish next time, or big ones would block their neighbourhood
+    // forever. Points whose cavity is still growing give up this iteration.
+    allow_deferment = !er.deferred();
+    rounds = er.rounds;
+    if (er.deferred()) {
+      Tuple* pend = tuples.data() + er.pending_begin;
+      int* f = failed.data();
+      Ops::for_each(er.size - er.pending_begin, [=] GDR_HD(long long i) { f[pend[i].pt] = 1; });
+    }
+    tuples.resize(er.size);
+    clock.template stop<Space>("cavity");
+  }
+
+  // Line 8, filtering: surviving marks and exact checks decide the winners (Delaunay
+  // independent, star-shaped cavities); they get vertex numbers. The Steiner cap may drop any
+  // of them: a dropped point's cavity stays as it was. Returns how many won.
+  long long verify_and_number(std::size_t ns) {
+    const std::size_t nt = tuples.size();
+    const m3d::TetView mv = dm.view();
+    Ops::for_each(nt, m3d::VerifyClaims{mv, cand.data(), tuples.data(), failed.data(),
+                                        params.strategies.touching});
+    Ops::for_each(nt, m3d::SetInCavity{mv, tuples.data(), failed.data(), 1});
+    Ops::for_each(nt, m3d::CheckCavity{mv, cand.data(), tuples.data(), failed.data()});
+    Ops::for_each(nt, m3d::SetInCavity{mv, tuples.data(), failed.data(), 0});
+    point_id.resize_discard(ns);
+    const int* fc = failed.data();
+    int* pid = point_id.data();
+    Ops::for_each(ns, [=] GDR_HD(long long j) { pid[j] = fc[j] ? 0 : 1; });
+    long long won = Ops::exclusive_scan(pid, pid, ns);
+    if (params.max_steiner >= 0 && res.inserted + won > params.max_steiner) {
+      const int keep = static_cast<int>(params.max_steiner - res.inserted);
+      int* f = failed.data();
+      Ops::for_each(ns, [=] GDR_HD(long long j) {
+        if (!f[j] && pid[j] >= keep) f[j] = 1;
+      });
+      Ops::for_each(nt, m3d::SetInCavity{mv, tuples.data(), failed.data(), 0});
+      won = keep;
+      res.cap_reached = true;
+    }
+    Ops::for_each(nt, m3d::MarkSubfaceFans{mv, cand.data(), tuples.data(), failed.data()});
+    clock.template stop<Space>("verify");
+    return won;
+  }
+
+  // Line 9: remesh each winning cavity (section 6.5) as a fan of new tetrahedra from its
+  // point, and each split subface cavity as a fan of new subfaces; then compact (S1) once a
+  // tenth of the elements are dead.
+  void insert(std::size_t ns, long long won) {
+    const std::size_t nt = tuples.size();
+    count.resize_discard(nt);
+    count2.resize_discard(nt);
+    const Tuple* tp = tuples.data();
+    const int* fl = failed.data();
+    Ops::for_each(nt, m3d::CountNew{dm.view(), tp, fl, count.data(), count2.data()});
+    const int new_tets = static_cast<int>(Ops::exclusive_scan(count.data(), count.data(), nt));
+    const int new_subs = static_cast<int>(Ops::exclusive_scan(count2.data(), count2.data(), nt));
+    const int old_ntet = dm.ntet, old_nsub = dm.nsub, old_npts = dm.npts;
+    Ops::for_each(nt, m3d::StoreSlotBase{dm.view(), tp, fl, count.data(), count2.data(), old_ntet, old_nsub});
+    dm.reserve(old_ntet + new_tets, old_nsub + new_subs, old_npts + static_cast<int>(won));
+    dm.ntet = old_ntet + new_tets;
+    dm.nsub = old_nsub + new_subs;
+    dm.npts = old_npts + static_cast<int>(won);
+    int* pid = point_id.data();
+    Ops::for_each(ns, [=] GDR_HD(long long j) { pid[j] += old_npts; });
+    const m3d::TetView mv = dm.view();
+    const Candidate* cs = cand.data();
+    Ops::for_each(nt, m3d::CreateSubfaces{mv, tp, fl, pid});
+    Ops::for_each(nt, m3d::CreateTets{mv, cs, tp, fl, pid});
+    int* ctr = counters.data();
+    Ops::for_each(nt, m3d::LinkNew{mv, tp, fl, ctr + kError});
+    Ops::for_each(ns, m3d::WritePoints{mv, cs, fl, pid});
+    Ops::for_each(nt, [=] GDR_HD(long long i) {
+      const Tuple& h = tp[i];
+      if (m3d::result_of(h) != m3d::kCavity || fl[h.pt]) return;
+      if (m3d::is_sub_tuple(h)) {
+        mv.sflag[h.elem] = m3d::kSubDead;
+        exec::atomic_add(ctr + kKilledSubs, 1);
+      } else {
+        mv.tflag[h.elem] = m3d::kDead;
+        exec::atomic_add(ctr + kKilledTets, 1);
+      }
+    });
+    int host_ctr[kCounters];
+    counters.download(host_ctr, kCounters);
+    if (host_ctr[kError])
+      throw Error(Status::InternalError, "gQM3d: broken cavity while linking new tetrahedra");
+    counters.zero();
+    res.inserted += won;
+    dead_tets += host_ctr[kKilledTets];
+    dead_subs += host_ctr[kKilledSubs];
+    clock.template stop<Space>("insert");
+    if (params.strategies.compaction && (10 * dead_tets > dm.ntet || 10 * dead_subs > dm.nsub)) {
+      m3d::compact(dm);
+      dead_tets = dead_subs = 0;
+    }
+    clock.template stop<Space>("compact");
+  }
+
+  // The final mesh, live elements only, with its subsegments (each once, from the least
+  // tetrahedron around it) and its bad tetrahedra listed on the device: the host needs no
+  // links, so none are copied.
+  void download(MeshResult& out) {
+    clock.restart();
+    m3d::compact(dm);
+    const m3d::TetView mv = dm.view();
+    const Criteria crit = params.criteria;
+    int* cnt = dm.aux.data();
+    auto subsegment_here = [=] GDR_HD(int t, int e) {
+      if (!m3d::is_subseg_edge(mv, t, e)) return false;
+      const int a = mv.tv[4 * t + m3d::edge_corner(e, 0)], b = mv.tv[4 * t + m3d::edge_corner(e, 1)];
+      return least_tet_around_edge(mv, t, a, b) == t;
+    };
+    Ops::for_each(dm.ntet, [=] GDR_HD(long long t) {
+      int n = 0;
+      for (int e = 0; e < 6; ++e) n += subsegment_here(static_cast<int>(t), e);
+      cnt[t] = n;
+    });
+    const std::size_t nsub = static_cast<std::size_t>(Ops::exclusive_scan(cnt, cnt, dm.ntet));
+    list.resize_discard(3 * nsub);
+    int* sub = list.data();
+    Ops::for_each(dm.ntet, [=] GDR_HD(long long t) {
+      int o = 3 * cnt[t];
+      for (int e = 0; e < 6; ++e) {
+        if (!subsegment_here(static_cast<int>(t), e)) continue;
+        const int a = mv.tv[4 * t + m3d::edge_corner(e, 0)], b = mv.tv[4 * t + m3d::edge_corner(e, 1)];
+        sub[o++] = a;
+        sub[o++] = b;
+        sub[o++] = m3d::segment_of(mv, a, b);
+      }
+    });
+    list.to_host(out.subseg);
+    Ops::for_each(dm.ntet, [=] GDR_HD(long long t) {
+      const int u = static_cast<int>(t);
+      cnt[t] = classify_tet(mv, u, crit, tet_shape(mv, u)) != kGood;
+    });
+    const std::size_t nbad = static_cast<std::size_t>(Ops::exclusive_scan(cnt, cnt, dm.ntet));
+    list.resize_discard(nbad);
+    int* bad = list.data();
+    Ops::for_each(dm.ntet, [=] GDR_HD(long long t) {
+      const int next = t + 1 < mv.ntet ? cnt[t + 1] : static_cast<int>(nbad);
+      if (next != cnt[t]) bad[cnt[t]] = static_cast<int>(t);
+    });
+    list.to_host(out.bad);
+    dm.xyz.resize(3 * std::size_t(dm.npts));
+    dm.ptype.resize(dm.npts);
+    dm.xyz.to_host(out.xyz);
+    dm.ptype.to_host(out.ptype);
+    dm.tv.to_host(out.tv);
+    if (dm.regions) dm.tregion.to_host(out.tregion);
+    dm.sv.to_host(out.sv);
+    dm.sfacet.to_host(out.sfacet);
+    clock.template stop<Space>("download");
+  }
+};
+
+template <class Space>
+EngineResult refine_mesh(const m3d::HostTetMesh& host, MeshResult& out, const EngineParams& params,
+                         const Callbacks& cb) {
+  Engine<Space> engine(params, cb);
+  engine.run(host, out);
+  return engine.res;
+}
+
+}  // namespace gdr::qm3d

@@ -1,0 +1,14 @@
+#include "exec/cuda.cuh"
+#include "qm3d/engine_dispatch.h"
+
+namespace gdr::qm3d {
+
+EngineResult refine_mesh_cuda(const m3d::HostTetMesh& mesh, MeshResult& out,
+                              const EngineParams& params, const Callbacks& cb) {
+  struct Trim {  // hand cached scratch memory back, also after an error
+    ~Trim() { exec::Ops<exec::Cuda>::trim(); }
+  } trim;
+  return refine_mesh<exec::Cuda>(mesh, out, params, cb);
+}
+
+}  // namespace gdr::qm3d

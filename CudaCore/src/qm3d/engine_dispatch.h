@@ -1,0 +1,14 @@
+// The engine's two instantiations: engine_cpu.cpp (OpenMP) and engine_cuda.cu (CUDA).
+#pragma once
+#include "qm3d/engine.h"
+
+namespace gdr::qm3d {
+
+EngineResult refine_mesh_cpu(const m3d::HostTetMesh& mesh, MeshResult& out,
+                             const EngineParams& params, const Callbacks& cb);
+#if defined(GDR_HAVE_CUDA)
+EngineResult refine_mesh_cuda(const m3d::HostTetMesh& mesh, MeshResult& out,
+                              const EngineParams& params, const Callbacks& cb);
+#endif
+
+}  // namespace gdr::qm3d

@@ -1,0 +1,349 @@
+// The per-element work of gQM3d that is its own (criteria, collecting the elements to split,
+// their splitting points and where they lie), as host+device functors. Cavities and
+// insertion are mesh3d's (cavity.h).
+#pragma once
+#include <cmath>
+
+#include "exec/hd.h"
+#include "exec/priority.h"
+#include "mesh3d/cavity.h"
+
+namespace gdr::qm3d {
+
+using exec::u64;
+using m3d::Candidate;
+using m3d::TetView;
+using m3d::pt;
+
+// Quality criteria, in forms without square roots or trigonometry.
+struct Criteria {
+  double max_radius_edge2 = 0;  // B^2; 0 = off
+  double max_volume6 = 0;       // 6 x the volume bound; 0 = off
+  double cos_min_dihedral = 0;  // cos of the dihedral bound; used when dihedral is on
+  int dihedral = 0;             // 1: a dihedral angle below the bound makes a tetrahedron bad
+  int step_limit = 4096;        // point-location walk bound (dropped beyond it)
+};
+
+// Classification of a tetrahedron against the criteria.
+enum : int { kGood = 0, kBad = 1, kTooBig = 2 };
+
+struct TetShape {
+  double r2 = 0;      // squared circumradius (inf when degenerate)
+  double lmin2 = 0;   // squared shortest edge
+  double volume6 = 0; // 6 x volume
+  double center[3] = {0, 0, 0};
+  bool ok = false;    // circumcentre computable
+};
+
+GDR_HD_INLINE TetShape tet_shape(const TetView& m, int t) {
+  TetShape s;
+  const int* v = m.tv + 4 * t;
+  const double* a = pt(m, v[0]);
+  const double* b = pt(m, v[1]);
+  const double* c = pt(m, v[2]);
+  const double* d = pt(m, v[3]);
+  s.lmin2 = fmin(fmin(m3d::dist2(a, b), m3d::dist2(a, c)),
+                 fmin(fmin(m3d::dist2(a, d), m3d::dist2(b, c)), fmin(m3d::dist2(b, d), m3d::dist2(c, d))));
+  const double ab[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  const double ac[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  const double ad[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+  double n[3];
+  m3d::cross3(ac, ad, n);
+  s.volume6 = fabs(m3d::dot3(ab, n));
+  s.ok = m3d::tet_circumcenter(a, b, c, d, s.center);
+  s.r2 = s.ok ? m3d::dist2(s.center, a) : INFINITY;
+  return s;
+}
+
+// Is any dihedral angle of t smaller than the bound? The dihedral angle at an edge has
+// cosine -n1.n2 / (|n1| |n2|) for the outward normals n1, n2 of the two faces there.
+GDR_HD_INLINE bool small_dihedral(const TetView& m, int t, double cos_bound) {
+  const int* v = m.tv + 4 * t;
+  double n[4][3], len[4];
+  for (int f = 0; f < 4; ++f) {
+    const double* a = pt(m, v[m3d::face_corner(f, 0)]);
+    const double* b = pt(m, v[m3d::face_corner(f, 1)]);
+    const double* c = pt(m, v[m3d::face_corner(f, 2)]);
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    const double w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    m3d::cross3(u, w, n[f]);
+    len[f] = sqrt(m3d::dot3(n[f], n[f]));
+  }
+  for (int e = 0; e < 6; ++e) {
+    // The faces at edge e are those opposite its two other corners.
+    int f[2], k = 0;
+    for (int c = 0; c < 4; ++c)
+      if (c != m3d::edge_corner(e, 0) && c != m3d::edge_corner(e, 1)) f[k++] = c;
+    if (-m3d::dot3(n[f[0]], n[f[1]]) > cos_bound * len[f[0]] * len[f[1]]) return true;
+  }
+  return false;
+}
+
+GDR_HD_INLINE int classify_tet(const TetView& m, int t, const Criteria& c, const TetShape& s) {
+  if (c.max_volume6 > 0 && s.volume6 > c.max_volume6) return kTooBig;
+  if (c.max_radius_edge2 > 0 && s.r2 > c.max_radius_edge2 * s.lmin2) return kBad;
+  if (c.dihedral && small_dihedral(m, t, c.cos_min_dihedral)) return kBad;
+  return kGood;
+}
+
+// ---------------------------------------------------------------------------------------
+// Collect (Algorithm 3 line 4, S4): an 11-bit mask per tetrahedron: bit 0 the tetrahedron
+// itself when bad, bits 1-4 the subface on face i when vertex i (the apex across it)
+// encroaches it, bits 5-10 the subsegment on edge e when one of the two other vertices
+// encroaches it. These never change while the tetrahedron lives: computed once when it is
+// new (kFresh) and kept in its flags; subsegments and subfaces flagged for splitting by
+// rejected points since are added each time. A subface or subsegment is listed from every
+// tetrahedron that sees it encroached; the splitting points name one canonical tetrahedron so
+// the S3 filter keeps one.
+enum : int { kSlotTet = 0, kSlotFace0 = 1, kSlotEdge0 = 5, kSlots = 11 };
+
+GDR_HD_INLINE int static_collect_mask(const TetView& m, const Criteria& c, int t) {
+  const TetShape s = tet_shape(m, t);
+  int mask = classify_tet(m, t, c, s) != kGood ? 1 : 0;
+  const int* v = m.tv + 4 * t;
+  for (int f = 0; f < 4; ++f) {
+    if (m.tsub[4 * t + f] < 0) continue;
+    if (m3d::in_diametral_ball(pt(m, v[m3d::face_corner(f, 0)]), pt(m, v[m3d::face_corner(f, 1)]),
+                               pt(m, v[m3d::face_corner(f, 2)]), pt(m, v[f])))
+      mask |= 1 << (kSlotFace0 + f);
+  }
+  const int flags = m.tflag[t];
+  for (int e = 0; e < 6; ++e) {
+    if (!(flags & (m3d::kSeg0 << e))) continue;
+    const int ca = m3d::edge_corner(e, 0), cb = m3d::edge_corner(e, 1);
+    for (int k = 0; k < 4; ++k) {
+      if (k == ca || k == cb) continue;
+      if (pred::in_diametral_sphere(pt(m, v[ca]), pt(m, v[cb]), pt(m, v[k])) > 0) {
+        mask |= 1 << (kSlotEdge0 + e);
+        break;
+      }
+    }
+  }
+  return mask;
+}
+
+GDR_HD_INLINE int collect_mask(int flags) {
+  if (flags & m3d::kDead) return 0;
+  const int split = ((flags / m3d::kSplitFace0) & 15) << kSlotFace0 |
+                    ((flags / m3d::kSplitEdge0) & 63) << kSlotEdge0;
+  return ((flags & m3d::kCollectBits) >> m3d::kCollectShift) | split;
+}
+
+GDR_HD_INLINE int popcount11(int x) {
+  int n = 0;
+  for (int k = 0; k < kSlots; ++k) n += (x >> k) & 1;
+  return n;
+}
+
+// The mask's entry count goes to aux, which the engine scans in place into list offsets.
+struct CollectMask {
+  TetView m;
+  Criteria c;
+  GDR_HD void operator()(long long i) const {
+    const int t = static_cast<int>(i);
+    int f = m.tflag[t];
+    if ((f & m3d::kFresh) && !(f & m3d::kDead)) {
+      f = (f & ~(m3d::kFresh | m3d::kCollectBits)) | (static_collect_mask(m, c, t) << m3d::kCollectShift);
+      m.tflag[t] = f;
+    }
+    m.aux[t] = popcount11(collect_mask(f));
+  }
+};
+
+// Expands the masks into the element list (t*16 + slot) at the scanned offsets.
+struct ExpandElements {
+  TetView m;
+  int* list;
+  GDR_HD void operator()(long long i) const {
+    const int t = static_cast<int>(i);
+    const int mask = collect_mask(m.tflag[t]);
+    int o = m.aux[t];
+    for (int k = 0; k < kSlots; ++k)
+      if (mask & (1 << k)) list[o++] = 16 * t + k;
+  }
+};
+
+// ---------------------------------------------------------------------------------------
+// Splitting points and their priorities (Algorithm 3 lines 6-7). Lower dimensions first
+// (termination): subsegments, then subfaces, then tetrahedra; within subsegments and
+// subfaces larger first, by factor-of-two size classes (a pseudo-random order inside a
+// class, as in 2D, so graded neighbourhoods do not chain); tetrahedra too big for the volume
+// bound larger first, then those bad by shape alone worst first by radius-edge ratio.
+enum : unsigned { kClassShape = 0, kClassTooBig = 1, kClassSubface = 2, kClassSegment = 3 };
+
+GDR_HD_INLINE float size_class(double size) {
+  if (!(size > 0) || !(size < 1e38)) return size > 0 ? 1e38f : 0.0f;
+  return static_cast<float>(exp2(floor(log2(size))));
+}
+
+GDR_HD_INLINE unsigned shuffle_id(unsigned x, unsigned salt) {  // a bijection of 32 bits
+  x ^= salt;
+  x ^= x >> 16;
+  x *= 0x7feb352du;
+  x ^= x >> 15;
+  x *= 0x846ca68bu;
+  x ^= x >> 16;
+  return x;
+}
+
+// The least tetrahedron around edge xy of t (so that every tetrahedron reporting a
+// subsegment names the same one).
+GDR_HD_INLINE int least_tet_around_edge(const TetView& m, int t, int x, int y) {
+  int best = t;
+  const int cx = m3d::corner_of(m, t, x), cy = m3d::corner_of(m, t, y);
+  int faces[2], nf = 0;
+  for (int f = 0; f < 4; ++f)
+    if (f != cx && f != cy) faces[nf++] = f;
+  for (int dir = 0; dir < 2; ++dir) {
+    int u = t, g = faces[dir];
+    for (int guard = 0; guard < 1000; ++guard) {
+      const int nb = m.tn[4 * u + g];
+      if (nb < 0) break;
+      u = nb >> 2;
+      if (u == t) return best;  // all the way round
+      if (u < best) best = u;
+      g = m3d::other_face_at_edge(m, u, nb & 3, x, y);
+    }
+  }
+  return best;
+}
+
+GDR_HD_INLINE void make_segment_candidate(const TetView& m, int t, int e, unsigned id,
+                                          Candidate& out) {
+  const int a = m.tv[4 * t + m3d::edge_corner(e, 0)], b = m.tv[4 * t + m3d::edge_corner(e, 1)];
+  m3d::segment_split_point(m, a, b, out.p);
+  const int start = least_tet_around_edge(m, t, a, b);
+  out.start = start;
+  out.ek = static_cast<signed char>(m3d::edge_index(m3d::corner_of(m, start, a), m3d::corner_of(m, start, b)));
+  out.a = a;
+  out.b = b;
+  out.sub = -1;
+  out.kind = m3d::kSegmentSplit;
+  out.prio = exec::make_priority(kClassSegment, size_class(m3d::dist2(pt(m, a), pt(m, b))), id);
+  // A split point that rounds onto an endpoint would duplicate it: leave that subsegment.
+  const double* pa = pt(m, a);
+  const double* pb = pt(m, b);
+  if ((out.p[0] == pa[0] && out.p[1] == pa[1] && out.p[2] == pa[2]) ||
+      (out.p[0] == pb[0] && out.p[1] == pb[1] && out.p[2] == pb[2]))
+    out.kind = m3d::kDropped;
+}
+
+// Splitting point of subface s: its circumcentre, located by walking in its facet. A walk
+// that must cross a subsegment splits that subsegment instead (the circumcentre would
+// encroach it, or lie outside the facet).
+GDR_HD_INLINE void make_subface_candidate(const TetView& m, int s, unsigned id, int step_limit,
+                                          Candidate& out) {
+  out.kind = m3d::kDropped;
+  const int* sv = m.sv + 3 * s;
+  double p[3];
+  if (!m3d::tri_circumcenter(pt(m, sv[0]), pt(m, sv[1]), pt(m, sv[2]), p)) return;
+  const double r2 = m3d::dist2(p, pt(m, sv[0]));
+  int u = s;
+  for (int step = 0; step < step_limit; ++step) {
+    const int tf = m.st[2 * u] >= 0 ? m.st[2 * u] : m.st[2 * u + 1];
+    const int t = tf >> 2;
+    const int w = m.tv[4 * t + (tf & 3)];  // the apex of a tetrahedron beside u
+    const int* v = m.sv + 3 * u;
+    int exit = -1;
+    for (int e0 = 0; e0 < 3 && exit < 0; ++e0) {
+      const int e = (e0 + step) % 3;  // rotate the first edge tried: no cycling
+      const int x = v[(e + 1) % 3], y = v[(e + 2) % 3], z = v[e];
+      // p is beyond edge xy in the facet when it and z lie on opposite sides of the plane
+      // through x, y and the apex w.
+      const double side_p = pred::orient3d(pt(m, x), pt(m, y), pt(m, w), p);
+      const double side_z = pred::orient3d(pt(m, x), pt(m, y), pt(m, w), pt(m, z));
+      if (side_p != 0 && (side_p > 0) != (side_z > 0)) exit = e;
+    }
+    if (exit < 0) {
+      for (int k = 0; k < 3; ++k) out.p[k] = p[k];
+      out.kind = m3d::kFacetSplit;
+      out.sub = u;
+      const int t2 = m.st[2 * u + 1] >= 0 ? m.st[2 * u + 1] >> 2 : t;
+      out.start = t2 < t ? t2 : t;  // canonical: the lesser tetrahedron beside it
+      out.ek = -1;
+      out.a = out.b = -1;
+      out.prio = exec::make_priority(kClassSubface, size_class(r2), id);
+      return;
+    }
+    const int x = v[(exit + 1) % 3], y = v[(exit + 2) % 3];
+    if (m3d::is_subseg(m, t, x, y)) {
+      const int e = m3d::edge_index(m3d::corner_of(m, t, x), m3d::corner_of(m, t, y));
+      exec::atomic_or(&m.tflag[t], m3d::kSplitEdge0 << e);
+      make_segment_candidate(m, t, e, id, out);
+      return;
+    }
+    u = m3d::subface_across(m, u, x, y);
+    if (u < 0) return;
+  }
+}
+
+struct ComputeSplittingPoints {
+  TetView m;
+  Criteria c;
+  const int* list;
+  Candidate* out;
+  unsigned salt;  // changes every iteration
+  GDR_HD void operator()(long long j) const {
+    const int e = list[j];
+    const int t = e >> 4, slot = e & 15;
+    Candidate& cand = out[j];
+    const unsigned id = shuffle_id(static_cast<unsigned>(j), salt);
+    if (slot >= kSlotEdge0) {
+      make_segment_candidate(m, t, slot - kSlotEdge0, id, cand);
+      return;
+    }
+    if (slot >= kSlotFace0) {
+      make_subface_candidate(m, m.tsub[4 * t + slot - kSlotFace0], id, c.step_limit, cand);
+      return;
+    }
+    // A bad tetrahedron: its circumcentre, located by walking from it. A walk that meets a
+    // subface splits that subface instead (the circumcentre lies beyond it).
+    cand.kind = m3d::kDropped;
+    const TetShape s = tet_shape(m, t);
+    if (!s.ok) return;
+    const double* p = s.center;
+    int u = t;
+    for (int step = 0; step < c.step_limit; ++step) {
+      int exit = -1;
+      for (int f0 = 0; f0 < 4 && exit < 0; ++f0) {
+        const int f = (f0 + step) % 4;
+        if (m3d::face_orient(m, u, f, p) < 0) exit = f;
+      }
+      if (exit < 0) {
+        for (int k = 0; k < 3; ++k) cand.p[k] = p[k];
+        cand.kind = m3d::kFreeSplit;
+        cand.start = u;
+        cand.sub = -1;
+        cand.ek = -1;
+        cand.a = cand.b = -1;
+        const int klass = classify_tet(m, t, c, s);
+        cand.prio = klass == kTooBig
+                        ? exec::make_priority(kClassTooBig, size_class(s.volume6), id)
+                        : exec::make_priority(kClassShape, static_cast<float>(fmin(s.r2 / s.lmin2, 1e38)), id);
+        return;
+      }
+      const int sub = m.tsub[4 * u + exit];
+      if (sub >= 0) {
+        exec::atomic_or(&m.tflag[u], m3d::kSplitFace0 << exit);
+        make_subface_candidate(m, sub, id, c.step_limit, cand);
+        return;
+      }
+      u = m.tn[4 * u + exit] >> 2;
+    }
+  }
+};
+
+// Filter (S3): one splitting point per tetrahedron, by atomic priority marks. Only
+// candidates whose random id is below `keep_below` (of 2^32) compete.
+struct ClaimStart {
+  TetView m;
+  const Candidate* cand;
+  u64 keep_below;
+  GDR_HD void operator()(long long j) const {
+    const Candidate& c = cand[j];
+    if (c.kind >= 0 && exec::priority_id(c.prio) < keep_below)
+      exec::raise_mark(&m.mark[c.start], static_cast<int>(j), c.prio, m3d::PrioOf{cand});
+  }
+};
+
+}  // namespace gdr::qm3d

@@ -1,0 +1,267 @@
+// gQM3d facade: the paper's Algorithm 3 end to end.
+//   1. check and clean the surface, compute its CDT on the CPU (TetGen; line 1);
+//   2. refine on the chosen backend (lines 2-10, engine.h);
+//   3. convert back, with per-tetrahedron quality and the dihedral-angle histogram.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <new>
+#include <sstream>
+#include <string>
+
+#include "cdt3d/cdt3d.h"
+#include "gdr/qm3d.h"
+#include "gdr/validate.h"
+#include "qm3d/engine_dispatch.h"
+
+namespace gdr {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+qm3d::Criteria make_criteria(const QualityTetOptions& o) {
+  qm3d::Criteria c;
+  c.max_radius_edge2 = o.radius_edge_ratio * o.radius_edge_ratio;
+  c.max_volume6 = 6.0 * o.max_volume;
+  c.dihedral = o.min_dihedral_angle > 0 ? 1 : 0;
+  c.cos_min_dihedral = std::cos(o.min_dihedral_angle * kPi / 180.0);
+  return c;
+}
+
+// Design strategies switched off for a measurement: GDR_DISABLE=s1,s3,s5,touching,block_rounds
+// (benchmarks only; see Benchmarks/README.md).
+qm3d::Strategies strategies_from_environment() {
+  qm3d::Strategies s;
+  const char* env = std::getenv("GDR_DISABLE");
+  if (!env) return s;
+  std::stringstream list(env);
+  std::string name;
+  while (std::getline(list, name, ',')) {
+    if (name == "s1") s.compaction = false;
+    else if (name == "s3") s.filtering = false;
+    else if (name == "s5") s.deferment = false;
+    else if (name == "touching") s.touching = false;
+    else if (name == "block_rounds") s.block_rounds = false;
+    else if (name == "s4" || name == "worst_first") continue;  // 2D only
+    else if (!name.empty())
+      throw Error(Status::InvalidInput, "GDR_DISABLE: unknown strategy '" + name +
+                                            "' (known: s1, s3, s5, touching, block_rounds)");
+  }
+  return s;
+}
+
+// Rough output size, for Auto and for the automatic cap: a quality mesh has about six
+// tetrahedra per point and at least the CDT's; a volume bound asks for volume / bound more.
+std::size_t estimate_tets(const m3d::HostTetMesh& m, double volume, const QualityTetOptions& o) {
+  double est = std::max(6.0 * m.points(), static_cast<double>(m.tets()));
+  if (o.max_volume > 0) est = std::max(est, 1.5 * volume / o.max_volume);
+  return est > 1e15 ? std::size_t(1e15) : static_cast<std::size_t>(est);
+}
+
+// Measured crossover of the 3D engine is not known yet for every machine: Auto takes the
+// GPU from 20k estimated tetrahedra per CPU thread when the process has used the GPU, from
+// 200k per thread before (the first GPU run pays for the CUDA context).
+std::size_t gpu_min_tets(const QualityTetOptions& o) {
+  if (o.gpu_min_tets > 0) return o.gpu_min_tets;
+  const std::size_t threads = static_cast<std::size_t>(std::max(1, cpu_threads()));
+  return (gpu_warm() ? 2000 : 20000) * threads;
+}
+
+// Below a radius-edge ratio of 2 (and with any dihedral bound) Delaunay refinement has no
+// termination guarantee: an automatic cap makes a run that cascades stop and report.
+long long automatic_steiner_cap(const m3d::HostTetMesh& m, std::size_t estimated,
+                                const QualityTetOptions& o) {
+  if (o.max_steiner_points >= 0) return o.max_steiner_points;
+  const bool guaranteed = (o.radius_edge_ratio == 0 || o.radius_edge_ratio >= 2.0) &&
+                          o.min_dihedral_angle == 0;
+  if (guaranteed) return -1;
+  return static_cast<long long>(
+      std::max({200.0 * m.points(), 1e6, 2.0 * static_cast<double>(estimated)}));
+}
+
+}  // namespace
+
+void validate_quality_tet_input(const Surface& input, const QualityTetOptions& o) {
+  (void)input;
+  auto bad = [](const std::string& what) { throw Error(Status::InvalidInput, what); };
+  if (!(o.radius_edge_ratio == 0 || (o.radius_edge_ratio >= 1.0 && std::isfinite(o.radius_edge_ratio))))
+    bad("radius-edge ratio must be at least 1.0 (or 0 to turn it off), got " +
+        std::to_string(o.radius_edge_ratio));
+  if (!(o.min_dihedral_angle >= 0 && o.min_dihedral_angle <= 60))
+    bad("minimum dihedral angle must be in [0, 60] degrees, got " + std::to_string(o.min_dihedral_angle));
+  if (!(o.max_volume >= 0 && std::isfinite(o.max_volume)))
+    bad("maximum volume must be >= 0 and finite, got " + std::to_string(o.max_volume));
+  if (o.max_steiner_points < -1) bad("maximum Steiner points must be >= 0 (or -1: automatic)");
+}
+
+QualityTetResult quality_tet_mesh(const Surface& input, const QualityTetOptions& options,
+                                  const Callbacks& cb) {
+  const auto t_start = Clock::now();
+  validate_quality_tet_input(input, options);
+  QualityTetResult result;
+  QualityTetStats& st = result.stats;
+  st.input_points = static_cast<long long>(input.points.size());
+  st.input_triangles = static_cast<long long>(input.triangles.size());
+  auto aborted = [&] { return cb.abort && cb.abort(); };
+  auto progress = [&](double f, const std::string& what) {
+    if (cb.progress) cb.progress(f, what);
+  };
+
+  progress(0.0, "checking input");
+  const cdt3d::Plc plc = cdt3d::check_surface(input, {}, cb);
+  st.input_seconds = since(t_start);
+  st.duplicate_points_merged = plc.duplicate_points_merged;
+  st.duplicate_triangles_merged = plc.duplicate_triangles_merged;
+  st.input_segments = static_cast<long long>(plc.segments.size());
+  st.input_facets = static_cast<long long>(plc.facet_origin.size());
+  st.input_volume = plc.volume;
+  if (aborted()) throw Error(Status::Aborted, "aborted by the caller");
+
+  progress(0.02, "constrained Delaunay tetrahedralization");
+  auto t0 = Clock::now();
+  m3d::HostTetMesh mesh = cdt3d::initial_cdt(plc, cb);
+  st.cdt_seconds = since(t0);
+  st.cdt_steiner_points = mesh.points() - static_cast<long long>(plc.points.size());
+  if (aborted()) throw Error(Status::Aborted, "aborted by the caller");
+
+  const std::size_t estimated = estimate_tets(mesh, plc.volume, options);
+  st.backend_used = resolve_backend(options.backend, estimated, gpu_min_tets(options));
+  if (st.backend_used == Backend::Gpu) st.device_name = device_info().name;
+  else st.device_name = "CPU (" + std::to_string(cpu_threads()) + " OpenMP threads)";
+
+  qm3d::EngineParams params;
+  params.criteria = make_criteria(options);
+  params.max_steiner = automatic_steiner_cap(mesh, estimated, options);
+  st.steiner_cap = params.max_steiner;
+  st.automatic_steiner_cap = options.max_steiner_points < 0 && params.max_steiner >= 0;
+  params.strategies = strategies_from_environment();
+  if (!options.refine) params.max_iterations = 0;
+  Callbacks engine_cb = cb;
+  if (cb.progress)  // iterations have no known total: report a slowly saturating fraction
+    engine_cb.progress = [&cb, n = 0](double, const std::string& what) mutable {
+      ++n;
+      cb.progress(0.05 + 0.85 * (1.0 - 1.0 / (1.0 + 0.05 * n)), what);
+    };
+  t0 = Clock::now();
+  qm3d::MeshResult out;
+  qm3d::EngineResult er;
+  try {
+    if (st.backend_used == Backend::Gpu) {
+#if defined(GDR_HAVE_CUDA)
+      er = qm3d::refine_mesh_cuda(mesh, out, params, engine_cb);
+      mark_gpu_warm();
+#endif
+    } else {
+      er = qm3d::refine_mesh_cpu(mesh, out, params, engine_cb);
+    }
+  } catch (const std::bad_alloc&) {
+    throw Error(Status::OutOfDeviceMemory, "out of memory during refinement");
+  }
+  if (options.refine) {
+    st.refine_seconds = since(t0);
+    st.iterations = er.iterations;
+    st.steiner_cap_reached = er.cap_reached;
+    st.stalled = er.stalled;
+    st.phases = er.phases;
+    if (st.backend_used == Backend::Gpu) st.peak_device_bytes = er.peak_bytes;
+    if (er.cap_reached && cb.warning)
+      cb.warning(st.automatic_steiner_cap
+                     ? "refinement stopped at the automatic cap of " + std::to_string(st.steiner_cap) +
+                           " Steiner points: below a radius-edge ratio of 2 (or with a dihedral "
+                           "bound) refinement may not terminate; relax the bounds, or set a cap "
+                           "of your own"
+                     : "refinement stopped at the Steiner point cap (" + std::to_string(st.steiner_cap) + ")");
+    if (er.stalled && cb.warning)
+      cb.warning("refinement stopped: the remaining bad elements cannot be split");
+  }
+  if (aborted()) throw Error(Status::Aborted, "aborted by the caller");
+  progress(0.92, "measuring the mesh");
+  const auto t_output = Clock::now();
+
+  // Convert back: points, tetrahedra, point types, subfaces with their input facet,
+  // subsegments, regions.
+  TetMesh& tm = result.mesh;
+  const int np = out.points(), nt = out.tets();
+  tm.points.resize(np);
+  tm.point_type.resize(np);
+  tm.tets.resize(nt);
+#pragma omp parallel for
+  for (int i = 0; i < np; ++i) {
+    tm.points[i] = Point3{out.xyz[3 * i], out.xyz[3 * i + 1], out.xyz[3 * i + 2]};
+    tm.point_type[i] = static_cast<PointType>(out.ptype[i]);
+  }
+#pragma omp parallel for
+  for (int t = 0; t < nt; ++t)
+    tm.tets[t] = {out.tv[4 * t], out.tv[4 * t + 1], out.tv[4 * t + 2], out.tv[4 * t + 3]};
+  const std::size_t nsf = out.sfacet.size();
+  tm.subfaces.resize(nsf);
+  tm.subface_facet.resize(nsf);
+  for (std::size_t s = 0; s < nsf; ++s) {
+    tm.subfaces[s] = {out.sv[3 * s], out.sv[3 * s + 1], out.sv[3 * s + 2]};
+    const int f = out.sfacet[s];
+    tm.subface_facet[s] = f >= 0 && f < static_cast<int>(plc.facet_origin.size()) ? plc.facet_origin[f] : -1;
+  }
+  const std::size_t nss = out.subseg.size() / 3;
+  tm.subsegments.resize(nss);
+  for (std::size_t k = 0; k < nss; ++k) tm.subsegments[k] = {out.subseg[3 * k], out.subseg[3 * k + 1]};
+  if (!out.tregion.empty()) tm.tet_region.assign(out.tregion.begin(), out.tregion.end());
+
+  // Per-tetrahedron quality and the histogram of all six dihedral angles.
+  result.radius_edge.resize(nt);
+  result.min_dihedral.resize(nt);
+  result.max_dihedral.resize(nt);
+  result.volume.resize(nt);
+  result.is_bad.assign(nt, 0);
+  for (const int t : out.bad) result.is_bad[t] = 1;
+  result.dihedral_histogram.assign(180, 0);
+  double total = 0, bad_volume = 0, min_d = 180, max_d = 0, max_re = 0;
+#pragma omp parallel
+  {
+    std::vector<long long> hist(180, 0);
+#pragma omp for reduction(+ : total, bad_volume) reduction(min : min_d) reduction(max : max_d, max_re)
+    for (int t = 0; t < nt; ++t) {
+      const auto& v = tm.tets[t];
+      const Point3 &a = tm.points[v[0]], &b = tm.points[v[1]], &c = tm.points[v[2]], &d = tm.points[v[3]];
+      double angles[6];
+      tet_dihedral_angles(a, b, c, d, angles);
+      double lo = 180, hi = 0;
+      for (double x : angles) {
+        lo = std::min(lo, x);
+        hi = std::max(hi, x);
+        ++hist[std::min(179, std::max(0, static_cast<int>(x)))];
+      }
+      const double re = tet_radius_edge(a, b, c, d);
+      const double vol = tet_volume(a, b, c, d);
+      result.radius_edge[t] = static_cast<float>(re);
+      result.min_dihedral[t] = static_cast<float>(lo);
+      result.max_dihedral[t] = static_cast<float>(hi);
+      result.volume[t] = vol;
+      total += vol;
+      if (result.is_bad[t]) bad_volume += vol;
+      min_d = std::min(min_d, lo);
+      max_d = std::max(max_d, hi);
+      if (std::isfinite(re)) max_re = std::max(max_re, re);
+    }
+#pragma omp critical
+    for (int k = 0; k < 180; ++k) result.dihedral_histogram[k] += hist[k];
+  }
+  st.output_points = np;
+  st.output_tets = nt;
+  st.output_subfaces = static_cast<long long>(nsf);
+  st.steiner_points = np - static_cast<long long>(plc.points.size());
+  st.bad_tets = static_cast<long long>(out.bad.size());
+  st.bad_volume_percent = total > 0 ? 100.0 * bad_volume / total : 0.0;
+  st.volume = total;
+  st.min_dihedral_deg = nt ? min_d : 0;
+  st.max_dihedral_deg = nt ? max_d : 0;
+  st.max_radius_edge = max_re;
+  st.output_seconds = since(t_output);
+  st.total_seconds = since(t_start);
+  progress(1.0, "done");
+  return result;
+}
+
+}  // namespace gdr
