@@ -36,6 +36,17 @@ struct Candidate {
   signed char ek;
 };
 
+// Why a point was not inserted this iteration (its `failed` word; 0: inserted).
+enum : int {
+  kFailLost = 1,      // a higher point claimed part of its cavity
+  kFailEncroach = 2,  // it would encroach a subsegment or subface (split first)
+  kFailTouch = 3,     // its cavity touches a higher one across a face that would not be Delaunay
+  kFailStar = 4,      // a cavity face does not see it strictly inside (not star-shaped)
+  kFailDeferred = 5,  // its cavity was still growing (S5)
+  kFailCap = 6,       // the Steiner cap
+  kFailReasons = 7,
+};
+
 struct PrioOf {
   const Candidate* cand;
   GDR_HD_INLINE u64 operator()(int k) const { return cand[k].prio; }
@@ -97,7 +108,7 @@ struct GrowCavity {
   GDR_HD int claim(int* slot, CavityTuple& h, const Candidate& c) const {
     const int r = exec::claim(slot, h.pt, c.prio, PrioOf{cand});
     if (r < 0) {
-      failed[h.pt] = 1;
+      failed[h.pt] = kFailLost;
       set_result(h, kLost);
     } else if (r == 0) {
       set_result(h, kDup);
@@ -133,7 +144,7 @@ struct GrowCavity {
     }
     if (claim(&m.mark[t], h, c) <= 0) return 0;
     if (encroaches_subsegment(t, c)) {
-      failed[h.pt] = 1;
+      failed[h.pt] = kFailEncroach;
       return 0;
     }
     int n = 0;
@@ -147,7 +158,7 @@ struct GrowCavity {
           if (in_diametral_ball(pt(m, q[face_corner(f, 0)]), pt(m, q[face_corner(f, 1)]),
                                 pt(m, q[face_corner(f, 2)]), c.p)) {
             exec::atomic_or(&m.tflag[t], kSplitFace0 << f);
-            failed[h.pt] = 1;
+            failed[h.pt] = kFailEncroach;
             return n;
           }
         }
@@ -179,7 +190,7 @@ struct GrowCavity {
       if (is_subseg_edge(m, st0, ce)) {
         if (c.kind == kFacetSplit && pred::in_diametral_sphere(pt(m, x), pt(m, y), c.p) > 0) {
           exec::atomic_or(&m.tflag[st0], kSplitEdge0 << ce);
-          failed[h.pt] = 1;
+          failed[h.pt] = kFailEncroach;
           return n;
         }
         continue;
@@ -214,22 +225,22 @@ struct VerifyClaims {
     const CavityTuple& h = tuples[i];
     const int r = result_of(h);
     if (is_sub_tuple(h)) {
-      if (r == kCavity && m.smark[h.elem] != h.pt + 1) failed[h.pt] = 1;
+      if (r == kCavity && m.smark[h.elem] != h.pt + 1) failed[h.pt] = kFailLost;
       return;
     }
-    if (r == kCavity && m.mark[h.elem] != h.pt + 1) failed[h.pt] = 1;
+    if (r == kCavity && m.mark[h.elem] != h.pt + 1) failed[h.pt] = kFailLost;
     if (r != kRing) return;
     const int u = h.elem, other = m.mark[u];
     if (!exec::held_above(other, h.pt, cand[h.pt].prio, PrioOf{cand})) return;
     if (!touching) {
-      failed[h.pt] = 1;
+      failed[h.pt] = kFailTouch;
       return;
     }
     const double* q = cand[other - 1].p;
     for (int g = 0; g < 4; ++g) {
       const int nb = m.tn[4 * u + g];
       if (nb < 0 || m.tsub[4 * u + g] >= 0 || m.mark[nb >> 2] != h.pt + 1) continue;
-      if (new_tet_insphere(m, nb >> 2, nb & 3, cand[h.pt].p, q) > 0) failed[h.pt] = 1;
+      if (new_tet_insphere(m, nb >> 2, nb & 3, cand[h.pt].p, q) > 0) failed[h.pt] = kFailTouch;
     }
   }
 };
@@ -314,11 +325,11 @@ struct CheckCavity {
     for (int f = 0; f < 4; ++f) {
       const int k = cavity_face(m, h.pt, t, f);
       if (k == kFaceFan) {
-        if (!(face_orient(m, t, f, c.p) > 0)) failed[h.pt] = 1;
+        if (!(face_orient(m, t, f, c.p) > 0)) failed[h.pt] = kFailStar;
       } else if (k == kFaceSplit) {
         const int nb = m.tn[4 * t + f];
         if (nb >= 0 && !((m.tflag[nb >> 2] & kInCavity) && m.mark[nb >> 2] == h.pt + 1))
-          failed[h.pt] = 1;
+          failed[h.pt] = kFailStar;
       }
     }
   }

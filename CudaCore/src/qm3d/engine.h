@@ -139,20 +139,22 @@ struct Engine {
       if (won > 0) {
         insert(ns, won);                                // line 9
         idle = 0;
-      } else if (++idle >= 3) {
+      } else if (++idle >= 5) {
         res.stalled = true;
         break;
       }
       if (cb.progress)
         cb.progress(0.0, "iteration " + std::to_string(iter + 1) + ": " + std::to_string(nl) +
                              " elements to split, " + std::to_string(won) + " points inserted");
-      if (trace)
+      if (trace) {
         std::fprintf(stderr,
                      "gdr-trace iter %d: tets %d, subfaces %d, points %d, elements %zu, "
-                     "candidates %zu, won %lld, rounds %d, tuples %zu, MB %.1f (peak %.1f)\n",
+                     "candidates %zu, won %lld, rounds %d, tuples %zu, MB %.1f (peak %.1f), "
+                     "lost/encroach/touch/star/defer/cap %s\n",
                      iter + 1, dm.ntet, dm.nsub, dm.npts, nl, ns, won, rounds, tuples.size(),
                      exec::memory_counter<Space>().current / 1048576.0,
-                     exec::memory_counter<Space>().peak / 1048576.0);
+                     exec::memory_counter<Space>().peak / 1048576.0, failure_counts().c_str());
+      }
       if (params.check_links) {
         m3d::compact(dm);
         m3d::check_host_mesh(dm.to_host(host.input_points));
@@ -161,6 +163,17 @@ struct Engine {
     }
     download(out);
     res.peak_bytes = exec::memory_counter<Space>().peak - mem_base;
+  }
+
+  // Trace only: why the points that did not go in failed (cavity.h kFail*).
+  std::string failure_counts() const {
+    std::vector<int> f(failed.size());
+    failed.download(f.data(), f.size());
+    long long n[m3d::kFailReasons] = {};
+    for (int x : f) ++n[x >= 0 && x < m3d::kFailReasons ? x : 0];
+    std::string s;
+    for (int k = 1; k < m3d::kFailReasons; ++k) s += (k > 1 ? "/" : "") + std::to_string(n[k]);
+    return s;
   }
 
   // Line 4: encroached subsegments, encroached subfaces and bad tetrahedra in one list (S1,
@@ -244,7 +257,8 @@ struct Engine {
     if (er.deferred()) {
       Tuple* pend = tuples.data() + er.pending_begin;
       int* f = failed.data();
-      Ops::for_each(er.size - er.pending_begin, [=] GDR_HD(long long i) { f[pend[i].pt] = 1; });
+      Ops::for_each(er.size - er.pending_begin,
+                    [=] GDR_HD(long long i) { f[pend[i].pt] = m3d::kFailDeferred; });
     }
     tuples.resize(er.size);
     clock.template stop<Space>("cavity");
@@ -270,7 +284,7 @@ struct Engine {
       const int keep = static_cast<int>(params.max_steiner - res.inserted);
       int* f = failed.data();
       Ops::for_each(ns, [=] GDR_HD(long long j) {
-        if (!f[j] && pid[j] >= keep) f[j] = 1;
+        if (!f[j] && pid[j] >= keep) f[j] = m3d::kFailCap;
       });
       Ops::for_each(nt, m3d::SetInCavity{mv, tuples.data(), failed.data(), 0});
       won = keep;
