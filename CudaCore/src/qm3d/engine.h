@@ -197,23 +197,23 @@ struct Engine {
     clock.template stop<Space>("split+locate");
   }
 
-  // Line 7 (S3): one splitting point per tetrahedron, by priority marks. When far more
+  // Line 7 (S3): one splitting point per neighbourhood, by priority marks. When far more
   // elements are bad than can win at once (the first iterations), only a random share of
   // them competes, at most a quarter of the tetrahedron count.
   std::size_t filter(std::size_t nl) {
     dm.mark.zero();
     const Candidate* ca = cand_all.data();
-    const int* mk = dm.mark.data();
     const double share = std::min(1.0, (dm.ntet / 4.0 + 4096.0) / static_cast<double>(nl));
     const u64 keep_below = static_cast<u64>(share * 4294967296.0);
     const bool filtering = params.strategies.filtering;
     if (filtering) Ops::for_each(nl, ClaimStart{dm.view(), ca, keep_below});
+    const KeptStart kept{dm.view(), ca, keep_below};
     const std::size_t ns = exec::compact_indices<Space>(
         nl,
         [=] GDR_HD(long long j) {
           const Candidate& c = ca[j];
           if (c.kind < 0) return false;
-          return filtering ? mk[c.start] == j + 1 : exec::priority_id(c.prio) < keep_below;
+          return filtering ? kept(j) : exec::priority_id(c.prio) < keep_below;
         },
         list, count);
     cand.resize_discard(ns);

@@ -333,16 +333,43 @@ struct ComputeSplittingPoints {
   }
 };
 
-// Filter (S3): one splitting point per tetrahedron, by atomic priority marks. Only
-// candidates whose random id is below `keep_below` (of 2^32) compete.
+// Filter (S3): one splitting point per neighbourhood, by atomic priority marks on the
+// tetrahedron holding it and its four neighbours (a cavity holds them nearly always, so a
+// point that loses one of them would lose its cavity anyway). Only candidates whose random
+// id is below `keep_below` (of 2^32) compete.
 struct ClaimStart {
   TetView m;
   const Candidate* cand;
   u64 keep_below;
+  GDR_HD bool competes(const Candidate& c) const {
+    return c.kind >= 0 && exec::priority_id(c.prio) < keep_below;
+  }
   GDR_HD void operator()(long long j) const {
     const Candidate& c = cand[j];
-    if (c.kind >= 0 && exec::priority_id(c.prio) < keep_below)
-      exec::raise_mark(&m.mark[c.start], static_cast<int>(j), c.prio, m3d::PrioOf{cand});
+    if (!competes(c)) return;
+    const int me = static_cast<int>(j);
+    exec::raise_mark(&m.mark[c.start], me, c.prio, m3d::PrioOf{cand});
+    for (int f = 0; f < 4; ++f) {
+      const int nb = m.tn[4 * c.start + f];
+      if (nb >= 0) exec::raise_mark(&m.mark[nb >> 2], me, c.prio, m3d::PrioOf{cand});
+    }
+  }
+};
+
+// Did candidate j keep every mark ClaimStart raised?
+struct KeptStart {
+  TetView m;
+  const Candidate* cand;
+  u64 keep_below;
+  GDR_HD bool operator()(long long j) const {
+    const Candidate& c = cand[j];
+    if (c.kind < 0 || exec::priority_id(c.prio) >= keep_below) return false;
+    if (m.mark[c.start] != j + 1) return false;
+    for (int f = 0; f < 4; ++f) {
+      const int nb = m.tn[4 * c.start + f];
+      if (nb >= 0 && m.mark[nb >> 2] != j + 1) return false;
+    }
+    return true;
   }
 };
 
