@@ -27,6 +27,7 @@ struct Strategies {
   bool deferment = true;     // S5: defer cavities still growing after a few rounds
   bool touching = true;      // cavities that touch go in together when the mesh stays Delaunay
   bool block_rounds = true;  // small ExpandList windows run their rounds inside one GPU block
+  bool worst_first = true;   // tetrahedra bad by shape alone worst first, not larger first
 };
 
 struct EngineParams {
@@ -60,9 +61,10 @@ struct MeshResult {
   int points() const { return static_cast<int>(ptype.size()); }
 };
 
+// `final_mesh` (tests): the refined mesh with all its links, to check or refine again.
 template <class Space>
 EngineResult refine_mesh(const m3d::HostTetMesh& mesh, MeshResult& out, const EngineParams& params,
-                         const Callbacks& cb);
+                         const Callbacks& cb, m3d::HostTetMesh* final_mesh = nullptr);
 
 namespace detail {
 
@@ -193,7 +195,8 @@ struct Engine {
   void compute_splitting_points(std::size_t nl, int iter) {
     cand_all.resize_discard(nl);
     Ops::for_each(nl, ComputeSplittingPoints{dm.view(), params.criteria, list.data(), cand_all.data(),
-                                             0x9e3779b9u * static_cast<unsigned>(iter + 1)});
+                                             0x9e3779b9u * static_cast<unsigned>(iter + 1),
+                                             params.strategies.worst_first});
     clock.template stop<Space>("split+locate");
   }
 
@@ -408,9 +411,10 @@ struct Engine {
 
 template <class Space>
 EngineResult refine_mesh(const m3d::HostTetMesh& host, MeshResult& out, const EngineParams& params,
-                         const Callbacks& cb) {
+                         const Callbacks& cb, m3d::HostTetMesh* final_mesh) {
   Engine<Space> engine(params, cb);
   engine.run(host, out);
+  if (final_mesh) *final_mesh = engine.dm.to_host(host.input_points);
   return engine.res;
 }
 

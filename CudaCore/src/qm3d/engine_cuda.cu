@@ -4,11 +4,12 @@
 namespace gdr::qm3d {
 
 EngineResult refine_mesh_cuda(const m3d::HostTetMesh& mesh, MeshResult& out,
-                              const EngineParams& params, const Callbacks& cb) {
+                              const EngineParams& params, const Callbacks& cb,
+                             m3d::HostTetMesh* final_mesh) {
   struct Trim {  // hand cached scratch memory back, also after an error
     ~Trim() { exec::Ops<exec::Cuda>::trim(); }
   } trim;
-  return refine_mesh<exec::Cuda>(mesh, out, params, cb);
+  return refine_mesh<exec::Cuda>(mesh, out, params, cb, final_mesh);
 }
 
 }  // namespace gdr::qm3d

@@ -5,10 +5,12 @@
 namespace gdr::qm3d {
 
 EngineResult refine_mesh_cpu(const m3d::HostTetMesh& mesh, MeshResult& out,
-                             const EngineParams& params, const Callbacks& cb);
+                             const EngineParams& params, const Callbacks& cb,
+                             m3d::HostTetMesh* final_mesh = nullptr);
 #if defined(GDR_HAVE_CUDA)
 EngineResult refine_mesh_cuda(const m3d::HostTetMesh& mesh, MeshResult& out,
-                              const EngineParams& params, const Callbacks& cb);
+                              const EngineParams& params, const Callbacks& cb,
+                             m3d::HostTetMesh* final_mesh = nullptr);
 #endif
 
 }  // namespace gdr::qm3d

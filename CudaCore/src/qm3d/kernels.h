@@ -282,7 +282,8 @@ struct ComputeSplittingPoints {
   Criteria c;
   const int* list;
   Candidate* out;
-  unsigned salt;  // changes every iteration
+  unsigned salt;     // changes every iteration
+  bool worst_first;  // shape-bad tetrahedra by radius-edge ratio; false: all larger first
   GDR_HD void operator()(long long j) const {
     const int e = list[j];
     const int t = e >> 4, slot = e & 15;
@@ -316,8 +317,8 @@ struct ComputeSplittingPoints {
         cand.sub = -1;
         cand.ek = -1;
         cand.a = cand.b = -1;
-        const int klass = classify_tet(m, t, c, s);
-        cand.prio = klass == kTooBig
+        const bool too_big = classify_tet(m, t, c, s) == kTooBig;
+        cand.prio = too_big || !worst_first
                         ? exec::make_priority(kClassTooBig, size_class(s.volume6), id)
                         : exec::make_priority(kClassShape, static_cast<float>(fmin(s.r2 / s.lmin2, 1e38)), id);
         return;

@@ -31,7 +31,7 @@ qm3d::Criteria make_criteria(const QualityTetOptions& o) {
   return c;
 }
 
-// Design strategies switched off for a measurement: GDR_DISABLE=s1,s3,s5,touching,block_rounds
+// Design strategies switched off for a measurement: GDR_DISABLE=s1,s3,s5,touching,block_rounds,worst_first
 // (benchmarks only; see Benchmarks/README.md).
 qm3d::Strategies strategies_from_environment() {
   qm3d::Strategies s;
@@ -45,10 +45,11 @@ qm3d::Strategies strategies_from_environment() {
     else if (name == "s5") s.deferment = false;
     else if (name == "touching") s.touching = false;
     else if (name == "block_rounds") s.block_rounds = false;
-    else if (name == "s4" || name == "worst_first") continue;  // 2D only
+    else if (name == "worst_first") s.worst_first = false;
+    else if (name == "s4") continue;  // 2D only: the 3D engine always lists all three kinds together
     else if (!name.empty())
       throw Error(Status::InvalidInput, "GDR_DISABLE: unknown strategy '" + name +
-                                            "' (known: s1, s3, s5, touching, block_rounds)");
+                                            "' (known: s1, s3, s5, touching, block_rounds, worst_first)");
   }
   return s;
 }
@@ -82,6 +83,33 @@ long long automatic_steiner_cap(const m3d::HostTetMesh& m, std::size_t estimated
       std::max({200.0 * m.points(), 1e6, 2.0 * static_cast<double>(estimated)}));
 }
 
+// Exact rescaling: the input is multiplied by a power of two that brings its largest
+// coordinate into [1, 2), so that the predicates' expansions neither overflow nor underflow
+// whatever units the input uses (multiplying by 2^k is exact), and the output is scaled back.
+struct PowerOfTwoScale {
+  int k = 0;
+  explicit PowerOfTwoScale(const Surface& s) {
+    double m = 0;
+    for (const Point3& p : s.points)
+      m = std::max({m, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
+    if (m > 0 && std::isfinite(m)) k = -std::ilogb(m);
+  }
+  Point3 apply(const Point3& p, int sign) const {
+    return {std::ldexp(p.x, sign * k), std::ldexp(p.y, sign * k), std::ldexp(p.z, sign * k)};
+  }
+  double volume(double v, int sign) const { return std::ldexp(v, 3 * sign * k); }
+  Surface scaled(const Surface& s) const {
+    Surface out = s;
+    for (Point3& p : out.points) p = apply(p, 1);
+    for (Point3& p : out.holes) p = apply(p, 1);
+    for (RegionSeed& r : out.regions) {
+      r.point = apply(r.point, 1);
+      r.max_volume = volume(r.max_volume, 1);
+    }
+    return out;
+  }
+};
+
 }  // namespace
 
 void validate_quality_tet_input(const Surface& input, const QualityTetOptions& o) {
@@ -97,10 +125,14 @@ void validate_quality_tet_input(const Surface& input, const QualityTetOptions& o
   if (o.max_steiner_points < -1) bad("maximum Steiner points must be >= 0 (or -1: automatic)");
 }
 
-QualityTetResult quality_tet_mesh(const Surface& input, const QualityTetOptions& options,
+QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptions& user_options,
                                   const Callbacks& cb) {
   const auto t_start = Clock::now();
-  validate_quality_tet_input(input, options);
+  validate_quality_tet_input(unscaled, user_options);
+  const PowerOfTwoScale scale(unscaled);
+  const Surface input = scale.scaled(unscaled);
+  QualityTetOptions options = user_options;
+  options.max_volume = scale.volume(options.max_volume, 1);
   QualityTetResult result;
   QualityTetStats& st = result.stats;
   st.input_points = static_cast<long long>(input.points.size());
@@ -117,7 +149,7 @@ QualityTetResult quality_tet_mesh(const Surface& input, const QualityTetOptions&
   st.duplicate_triangles_merged = plc.duplicate_triangles_merged;
   st.input_segments = static_cast<long long>(plc.segments.size());
   st.input_facets = static_cast<long long>(plc.facet_origin.size());
-  st.input_volume = plc.volume;
+  st.input_volume = scale.volume(plc.volume, -1);
   if (aborted()) throw Error(Status::Aborted, "aborted by the caller");
 
   progress(0.02, "constrained Delaunay tetrahedralization");
@@ -190,7 +222,7 @@ QualityTetResult quality_tet_mesh(const Surface& input, const QualityTetOptions&
   tm.tets.resize(nt);
 #pragma omp parallel for
   for (int i = 0; i < np; ++i) {
-    tm.points[i] = Point3{out.xyz[3 * i], out.xyz[3 * i + 1], out.xyz[3 * i + 2]};
+    tm.points[i] = scale.apply(Point3{out.xyz[3 * i], out.xyz[3 * i + 1], out.xyz[3 * i + 2]}, -1);
     tm.point_type[i] = static_cast<PointType>(out.ptype[i]);
   }
 #pragma omp parallel for

@@ -23,12 +23,13 @@ std::vector<gdr::Backend> backends() {
 }
 
 gdr::qm3d::EngineResult run(const gdr::m3d::HostTetMesh& in, gdr::qm3d::MeshResult& out,
-                            const gdr::qm3d::EngineParams& p, gdr::Backend backend) {
+                            const gdr::qm3d::EngineParams& p, gdr::Backend backend,
+                            gdr::m3d::HostTetMesh* final_mesh = nullptr) {
 #if defined(GDR_HAVE_CUDA)
-  if (backend == gdr::Backend::Gpu) return gdr::qm3d::refine_mesh_cuda(in, out, p, {});
+  if (backend == gdr::Backend::Gpu) return gdr::qm3d::refine_mesh_cuda(in, out, p, {}, final_mesh);
 #endif
   (void)backend;
-  return gdr::qm3d::refine_mesh_cpu(in, out, p, {});
+  return gdr::qm3d::refine_mesh_cpu(in, out, p, {}, final_mesh);
 }
 
 gdr::TetMesh to_tetmesh(const gdr::qm3d::MeshResult& r) {
@@ -84,6 +85,24 @@ TEST(Qm3dEngine, RefinesABoxToAVolumeBound) {
 }
 
 
+
+// The refined mesh, with all its links, refined again under the same bounds: nothing is
+// left to split (no stale split flags, no element the first run left behind unreported).
+TEST(Qm3dEngine, RefiningAgainAddsNothing) {
+  for (auto backend : backends()) {
+    SCOPED_TRACE(gdr::to_string(backend));
+    const auto b = box_mesh(2, 2, 3, 1);
+    gdr::qm3d::MeshResult out, again;
+    gdr::m3d::HostTetMesh refined;
+    const auto p = params(1.3, 0.01);
+    run(b.mesh, out, p, backend, &refined);
+    ASSERT_NO_THROW(gdr::m3d::check_host_mesh(refined));
+    const auto er = run(refined, again, p, backend);
+    EXPECT_EQ(er.inserted, 0);
+    EXPECT_EQ(er.iterations, 0);
+    EXPECT_EQ(again.tets(), out.tets());
+  }
+}
 
 TEST(Qm3dEngine, InternalFacetKeepsTwoRegions) {
   for (auto backend : backends()) {
