@@ -13,10 +13,17 @@
 namespace gdr::cdt3d {
 
 // A checked piecewise linear complex. Points keep the input order, with exact duplicates
-// merged into their first occurrence.
+// merged into their first occurrence and points that no triangle or segment uses dropped.
+//
+// The domain is decided here, once, exactly: the surface cuts space into cells (connected
+// parts of space off the surface; cell 0 is the unbounded outside). A cell belongs to the
+// domain when it is reached from outside by crossing the surface an odd number of times at
+// least (so a shell inside another bounds a cavity, and an internal facet does not change
+// that), or when it holds a region seed; a cell with a hole seed never does. Triangles with
+// no domain cell on either side are dropped.
 struct Plc {
   std::vector<Point3> points;
-  std::vector<int> point_map;                    // input point -> PLC point
+  std::vector<int> point_map;                    // input point -> PLC point (-1: unused)
   std::vector<std::array<int, 3>> triangles;     // duplicate triangles removed
   std::vector<int> triangle_origin;              // PLC triangle -> input triangle
   std::vector<int> triangle_facet;               // PLC triangle -> facet id (dense, from 0)
@@ -26,9 +33,17 @@ struct Plc {
                                                  // input's own segments (PLC point ids)
   std::vector<Point3> holes;
   std::vector<RegionSeed> regions;
+  // Cells (empty when the surface need not be closed). Front is the side where the
+  // triangle's corners turn counter-clockwise, i.e. orient3d(v0, v1, v2, p) < 0.
+  std::vector<std::array<int, 2>> triangle_cell;  // per triangle: cell in front, behind
+  std::vector<unsigned char> cell_in_domain;      // per cell
+  std::vector<int> cell_region;                   // per cell: index into regions, or -1
+  std::vector<double> cell_volume;                // per cell (cell 0: 0)
   long long duplicate_points_merged = 0;
   long long duplicate_triangles_merged = 0;
-  double volume = 0;                             // volume enclosed by the surface
+  long long unused_points = 0;                   // input points no triangle or segment uses
+  long long outside_triangles = 0;               // dropped: no domain cell on either side
+  double volume = 0;                             // of the domain: sum of its cells' volumes
 };
 
 struct CheckOptions {

@@ -1,0 +1,459 @@
+// initial_cdt: the constrained Delaunay tetrahedralization of a checked PLC by TetGen's
+// library, mapped once (no text files) into the engines' HostTetMesh.
+//
+// What goes to TetGen: the PLC points; one TetGen facet per PLC triangle with marker
+// facet + 1 (F = facet count), so subfaces and facet Steiner points come back with their
+// facet; Plc::segments as TetGen edges with marker F + 1 + segment, so Steiner points on
+// segments come back with their segment. Holes and regions are not passed: check_surface
+// has already decided, exactly, which cells form the domain (TetGen cannot express the
+// cavity rule), so TetGen meshes everything the surface encloses and the cells outside the
+// domain are removed here, by flooding tets from their subfaces.
+//
+// Switches: "pnO0JQ": p (PLC: TetGen's constrained Delaunay tetrahedralization, which may
+// split segments and facets with Steiner points to recover them), n (neighbours), O0 (no
+// mesh optimisation: its flips and smoothing would leave a mesh that is not constrained
+// Delaunay), J (keep the point numbering), Q (quiet). Measured on ../shared/data: Y (keep
+// the input surface unsplit) leaves faces that are not locally Delaunay (2958 on boat.off,
+// 318 on fandisk.off, 148 on penguin_hr.off) because TetGen then recovers the boundary with
+// interior Steiner points and flips; the refinement engine's cavities need a constrained
+// Delaunay mesh, so Y is only the fallback when "p" alone fails, with a warning.
+#define TETLIBRARY
+#include <tetgen.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <numeric>
+#include <unordered_map>
+
+#include "cdt3d/cdt3d.h"
+#include "cdt3d/geometry.h"
+#include "gdr/error.h"
+#include "mesh3d/tet_topology.h"
+
+namespace gdr::cdt3d {
+namespace {
+
+using m3d::HostTetMesh;
+
+std::string str(long long v) { return std::to_string(v); }
+
+[[noreturn]] void internal(const std::string& what) {
+  throw Error(Status::InternalError, "initial CDT: " + what);
+}
+
+// Fills TetGen's input. TetGen frees these arrays itself (tetgenio's destructor).
+void fill_input(const Plc& plc, tetgenio& in) {
+  const int np = static_cast<int>(plc.points.size());
+  const int nt = static_cast<int>(plc.triangles.size());
+  const int nf = static_cast<int>(plc.facet_origin.size());
+  in.firstnumber = 0;
+  in.numberofpoints = np;
+  in.pointlist = new REAL[3 * static_cast<std::size_t>(np)];
+  in.pointmarkerlist = new int[np];  // zeros: asks TetGen for Steiner point markers
+  for (int i = 0; i < np; ++i) {
+    in.pointlist[3 * i] = plc.points[i].x;
+    in.pointlist[3 * i + 1] = plc.points[i].y;
+    in.pointlist[3 * i + 2] = plc.points[i].z;
+    in.pointmarkerlist[i] = 0;
+  }
+  in.numberoffacets = nt;
+  in.facetlist = new tetgenio::facet[nt];
+  in.facetmarkerlist = new int[nt];
+  for (int t = 0; t < nt; ++t) {
+    tetgenio::facet& f = in.facetlist[t];
+    tetgenio::init(&f);
+    f.numberofpolygons = 1;
+    f.polygonlist = new tetgenio::polygon[1];
+    tetgenio::init(&f.polygonlist[0]);
+    f.polygonlist[0].numberofvertices = 3;
+    f.polygonlist[0].vertexlist = new int[3];
+    for (int k = 0; k < 3; ++k) f.polygonlist[0].vertexlist[k] = plc.triangles[t][k];
+    in.facetmarkerlist[t] = plc.triangle_facet[t] + 1;
+  }
+  const int ns = static_cast<int>(plc.segments.size());
+  in.numberofedges = ns;
+  in.edgelist = new int[2 * static_cast<std::size_t>(ns)];
+  in.edgemarkerlist = new int[ns];
+  for (int g = 0; g < ns; ++g) {
+    in.edgelist[2 * g] = plc.segments[g][0];
+    in.edgelist[2 * g + 1] = plc.segments[g][1];
+    in.edgemarkerlist[g] = nf + 1 + g;
+  }
+}
+
+// Runs TetGen with `switches`; its failures (thrown exit codes) become gdr::Error.
+void run_tetgen(const std::string& switches, tetgenio& in, tetgenio& out) {
+  tetgenbehavior behavior;
+  std::vector<char> buffer(switches.begin(), switches.end());
+  buffer.push_back('\0');
+  if (!behavior.parse_commandline(buffer.data()))
+    internal("TetGen rejected the switches '" + switches + "'");
+  try {
+    tetrahedralize(&behavior, &in, &out);
+  } catch (int code) {
+    switch (code) {
+      case 1: throw Error(Status::OutOfDeviceMemory, "TetGen ran out of memory");
+      case 3: throw Error(Status::SelfIntersectingInput, "TetGen found a self-intersection (within its tolerance)");
+      case 4: throw Error(Status::InvalidInput, "TetGen found a very small input feature (below its tolerance)");
+      case 5: throw Error(Status::InvalidInput, "TetGen found two very close input facets");
+      case 2: throw Error(Status::InternalError, "TetGen reported an internal error (code 2)");
+      default: throw Error(Status::InvalidInput, "TetGen failed (code " + str(code) + ")");
+    }
+  }
+}
+
+std::uint64_t edge_key(int a, int b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+}
+
+struct UnionFind {
+  std::vector<int> parent;
+  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  int find(int x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  }
+  void unite(int a, int b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  }
+};
+
+// A triangle's corners, sorted, as a hash key.
+struct FaceKey {
+  int v[3];
+  bool operator==(const FaceKey& o) const { return v[0] == o.v[0] && v[1] == o.v[1] && v[2] == o.v[2]; }
+};
+struct FaceKeyHash {
+  std::size_t operator()(const FaceKey& k) const {
+    std::uint64_t h = static_cast<std::uint32_t>(k.v[0]) * 0x9E3779B97F4A7C15ull;
+    h = (h ^ (h >> 29)) + static_cast<std::uint32_t>(k.v[1]) * 0xBF58476D1CE4E5B9ull;
+    h = (h ^ (h >> 31)) + static_cast<std::uint32_t>(k.v[2]) * 0x94D049BB133111EBull;
+    return static_cast<std::size_t>(h ^ (h >> 32));
+  }
+};
+FaceKey face_key(int a, int b, int c) {
+  if (a > b) std::swap(a, b);
+  if (b > c) std::swap(b, c);
+  if (a > b) std::swap(a, b);
+  return {{a, b, c}};
+}
+
+// The face of tet t (corners tv[4t..]) whose corners are {a, b, c}: the corner not among
+// them; -1 if t has no such face.
+int face_index(const std::vector<int>& tv, int t, int a, int b, int c) {
+  int face = -1, hits = 0;
+  for (int i = 0; i < 4; ++i) {
+    const int v = tv[4 * t + i];
+    if (v == a || v == b || v == c) ++hits;
+    else face = i;
+  }
+  return hits == 3 ? face : -1;
+}
+
+// +1 when (a, b, c) (a face of t) is a rotation of face i's outside-counter-clockwise corners, -1 when
+// reversed.
+int face_orientation(const std::vector<int>& tv, int t, int i, int a, int b) {
+  const int f0 = tv[4 * t + m3d::face_corner(i, 0)], f1 = tv[4 * t + m3d::face_corner(i, 1)],
+            f2 = tv[4 * t + m3d::face_corner(i, 2)];
+  if ((a == f0 && b == f1) || (a == f1 && b == f2) || (a == f2 && b == f0)) return 1;
+  return -1;
+}
+
+// Builds the mesh of everything TetGen meshed (the cells the surface encloses).
+HostTetMesh convert(const Plc& plc, const tetgenio& out) {
+  const int nin = static_cast<int>(plc.points.size());
+  const int nf = static_cast<int>(plc.facet_origin.size());
+  const int ng = static_cast<int>(plc.segments.size());
+  if (out.numberofcorners != 4) internal("TetGen returned " + str(out.numberofcorners) + " corners per tet");
+  if (out.numberofpoints < nin) internal("TetGen returned fewer points than it was given");
+  if (!out.neighborlist || (out.numberoftrifaces > 0 && !out.trifacemarkerlist) ||
+      !out.pointmarkerlist)
+    internal("TetGen did not return neighbours, subface markers or point markers");
+  HostTetMesh m;
+  const int np = out.numberofpoints, nt = out.numberoftetrahedra;
+  m.xyz.assign(out.pointlist, out.pointlist + 3 * static_cast<std::size_t>(np));
+  for (int i = 0; i < nin; ++i)
+    if (m.xyz[3 * i] != plc.points[i].x || m.xyz[3 * i + 1] != plc.points[i].y || m.xyz[3 * i + 2] != plc.points[i].z)
+      internal("TetGen moved or renumbered input point " + str(i));
+  m.input_points = nin;
+
+  // Points: TetGen's markers say what an added point lies on (see fill_input).
+  m.ptype.assign(np, m3d::kInputPoint);
+  m.pseg.assign(np, -1);
+  m.pfacet.assign(np, -1);
+  for (int v = nin; v < np; ++v) {
+    const int mark = out.pointmarkerlist[v];
+    if (mark >= 1 && mark <= nf) {
+      m.ptype[v] = m3d::kFacetPoint;
+      m.pfacet[v] = mark - 1;
+    } else if (mark > nf && mark <= nf + ng) {
+      m.ptype[v] = m3d::kSegmentPoint;
+      m.pseg[v] = mark - nf - 1;
+    } else {
+      m.ptype[v] = m3d::kFreePoint;
+    }
+  }
+
+  // Tets: TetGen's have orient3d < 0; swapping corners 0 and 1 (and their neighbour
+  // entries: TetGen's neighbour i is across the face opposite corner i) makes them positive.
+  m.tv.resize(4 * static_cast<std::size_t>(nt));
+  for (int t = 0; t < nt; ++t) {
+    const int* v = out.tetrahedronlist + 4 * static_cast<std::size_t>(t);
+    m.tv[4 * t] = v[1];
+    m.tv[4 * t + 1] = v[0];
+    m.tv[4 * t + 2] = v[2];
+    m.tv[4 * t + 3] = v[3];
+  }
+  m.tn.assign(4 * static_cast<std::size_t>(nt), -1);
+  for (int t = 0; t < nt; ++t) {
+    for (int i = 0; i < 4; ++i) {
+      const int tg = i < 2 ? 1 - i : i;  // TetGen's corner index of our corner i
+      const int u = out.neighborlist[4 * static_cast<std::size_t>(t) + tg];
+      if (u < 0) continue;
+      if (u >= nt) internal("TetGen neighbour " + str(u) + " out of range");
+      // Our face i of t must be a face of u; the corner of u off it gives u's face index.
+      const int a = m.tv[4 * t + m3d::face_corner(i, 0)], b = m.tv[4 * t + m3d::face_corner(i, 1)],
+                c = m.tv[4 * t + m3d::face_corner(i, 2)];
+      const int j = face_index(m.tv, u, a, b, c);
+      if (j < 0) internal("TetGen neighbour of tet " + str(t) + " does not share its face " + str(i));
+      m.tn[4 * t + i] = 4 * u + j;
+    }
+  }
+
+  // Subfaces, found among the tet faces by their corners; the side by orientation.
+  const int nsf = out.numberoftrifaces;
+  m.tsub.assign(4 * static_cast<std::size_t>(nt), -1);
+  m.sv.resize(3 * static_cast<std::size_t>(nsf));
+  m.st.assign(2 * static_cast<std::size_t>(nsf), -1);
+  m.sfacet.resize(nsf);
+  std::unordered_map<FaceKey, int, FaceKeyHash> by_corners;
+  by_corners.reserve(2 * static_cast<std::size_t>(nsf));
+  for (int s = 0; s < nsf; ++s) {
+    for (int k = 0; k < 3; ++k) m.sv[3 * s + k] = out.trifacelist[3 * s + k];
+    const int mark = out.trifacemarkerlist[s];
+    if (mark < 1 || mark > nf) internal("subface " + str(s) + " has marker " + str(mark));
+    m.sfacet[s] = mark - 1;
+    if (!by_corners.emplace(face_key(m.sv[3 * s], m.sv[3 * s + 1], m.sv[3 * s + 2]), s).second)
+      internal("TetGen returned subface " + str(s) + " twice");
+  }
+  for (int x = 0; x < 4 * nt; ++x) {
+    if (m.tn[x] >= 0 && m.tn[x] < x) continue;  // an interior face: seen from its other side
+    const int t = x / 4, i = x % 4;
+    const int a = m.tv[4 * t + m3d::face_corner(i, 0)], b = m.tv[4 * t + m3d::face_corner(i, 1)],
+              c = m.tv[4 * t + m3d::face_corner(i, 2)];
+    const auto it = by_corners.find(face_key(a, b, c));
+    if (it == by_corners.end()) continue;
+    const int s = it->second;
+    for (const int y : {x, m.tn[x]}) {
+      if (y < 0) continue;
+      const int side = face_orientation(m.tv, y / 4, y % 4, m.sv[3 * s], m.sv[3 * s + 1]) == 1 ? 0 : 1;
+      if (m.st[2 * s + side] >= 0) internal("subface " + str(s) + " has two tets on one side");
+      m.st[2 * s + side] = y;
+      m.tsub[y] = s;
+    }
+  }
+  for (int s = 0; s < nsf; ++s)
+    if (m.st[2 * s] < 0 && m.st[2 * s + 1] < 0) internal("subface " + str(s) + " is not a face of any tet");
+  m.tseg.assign(nt, 0);
+  return m;
+}
+
+// The cell on each side of every subface (from the PLC triangle or facet it lies in), then
+// the cell of every tet by flooding across faces that are not subfaces.
+std::vector<int> tet_cells(const Plc& plc, const HostTetMesh& m) {
+  const int nt = m.tets(), ns = m.subfaces();
+  const auto& P = plc.points;
+  // Each facet's first triangle is its reference for "front".
+  std::vector<int> facet_ref(plc.facet_origin.size(), -1);
+  for (int t = static_cast<int>(plc.triangles.size()) - 1; t >= 0; --t) facet_ref[plc.triangle_facet[t]] = t;
+
+  UnionFind uf(nt);
+  for (int x = 0; x < 4 * nt; ++x)
+    if (m.tn[x] >= 0 && m.tsub[x] < 0) uf.unite(x / 4, m.tn[x] / 4);
+  std::vector<int> label(nt, -1);  // per flood root: its cell
+  auto point = [&](int v) { return Point3{m.xyz[3 * v], m.xyz[3 * v + 1], m.xyz[3 * v + 2]}; };
+  for (int s = 0; s < ns; ++s) {
+    const int ref = facet_ref[m.sfacet[s]];
+    const auto& r = plc.triangles[ref];
+    const Point3 a = point(m.sv[3 * s]), b = point(m.sv[3 * s + 1]), c = point(m.sv[3 * s + 2]);
+    // Does the subface turn the same way as its facet's reference triangle?
+    bool same;
+    if (m.sv[3 * s] < m.input_points && m.sv[3 * s + 1] < m.input_points && m.sv[3 * s + 2] < m.input_points) {
+      const int axis = geom::projection_axis(P[r[0]], P[r[1]], P[r[2]]);  // exact: coplanar
+      same = geom::orient2d(axis, a, b, c) == geom::orient2d(axis, P[r[0]], P[r[1]], P[r[2]]);
+    } else {  // rounded Steiner points: compare normals, nearly (anti)parallel
+      auto normal = [](const Point3& p, const Point3& q, const Point3& w, double n[3]) {
+        const double u[3] = {q.x - p.x, q.y - p.y, q.z - p.z}, v[3] = {w.x - p.x, w.y - p.y, w.z - p.z};
+        n[0] = u[1] * v[2] - u[2] * v[1];
+        n[1] = u[2] * v[0] - u[0] * v[2];
+        n[2] = u[0] * v[1] - u[1] * v[0];
+      };
+      double n1[3], n2[3];
+      normal(a, b, c, n1);
+      normal(P[r[0]], P[r[1]], P[r[2]], n2);
+      same = n1[0] * n2[0] + n1[1] * n2[1] + n1[2] * n2[2] > 0;
+    }
+    for (int k = 0; k < 2; ++k) {
+      const int x = m.st[2 * s + k];
+      if (x < 0) continue;
+      // Side 0's tet lies behind (sv0, sv1, sv2); "front" is Plc's triangle_cell[.][0].
+      const bool front_of_sub = k == 1;
+      const int cell = plc.triangle_cell[ref][front_of_sub == same ? 0 : 1];
+      const int root = uf.find(x / 4);
+      if (label[root] < 0) {
+        label[root] = cell;
+      } else if (label[root] != cell &&
+                 (plc.cell_in_domain[label[root]] || plc.cell_in_domain[cell])) {
+        internal("tets of one flood region lie in cells " + str(label[root]) + " and " + str(cell));
+      }
+    }
+  }
+  std::vector<int> cell(nt);
+  for (int t = 0; t < nt; ++t) {
+    const int l = label[uf.find(t)];
+    if (l < 0) internal("tet " + str(t) + " touches no subface through its flood region");
+    cell[t] = l;
+  }
+  return cell;
+}
+
+// Keeps the tets in domain cells, the subfaces next to them, the input points and the
+// added points still in use; renumbers all links.
+HostTetMesh keep_domain(const Plc& plc, const HostTetMesh& full, const std::vector<int>& cell) {
+  const int nt = full.tets(), ns = full.subfaces(), np = full.points();
+  std::vector<int> new_tet(nt, -1);
+  int kt = 0;
+  for (int t = 0; t < nt; ++t)
+    if (plc.cell_in_domain[cell[t]]) new_tet[t] = kt++;
+  auto map_face = [&](int x) { return x < 0 || new_tet[x / 4] < 0 ? -1 : 4 * new_tet[x / 4] + x % 4; };
+  std::vector<int> new_sub(ns, -1);
+  int ks = 0;
+  for (int s = 0; s < ns; ++s)
+    if (map_face(full.st[2 * s]) >= 0 || map_face(full.st[2 * s + 1]) >= 0) new_sub[s] = ks++;
+  std::vector<char> used(np, 0);
+  for (int v = 0; v < full.input_points; ++v) used[v] = 1;
+  for (int t = 0; t < nt; ++t)
+    if (new_tet[t] >= 0)
+      for (int k = 0; k < 4; ++k) used[full.tv[4 * t + k]] = 1;
+  std::vector<int> new_point(np, -1);
+  int kp = 0;
+  for (int v = 0; v < np; ++v)
+    if (used[v]) new_point[v] = kp++;
+
+  HostTetMesh m;
+  m.input_points = full.input_points;
+  m.xyz.resize(3 * static_cast<std::size_t>(kp));
+  m.ptype.resize(kp);
+  m.pseg.resize(kp);
+  m.pfacet.resize(kp);
+  for (int v = 0; v < np; ++v) {
+    const int w = new_point[v];
+    if (w < 0) continue;
+    for (int d = 0; d < 3; ++d) m.xyz[3 * w + d] = full.xyz[3 * v + d];
+    m.ptype[w] = full.ptype[v];
+    m.pseg[w] = full.pseg[v];
+    m.pfacet[w] = full.pfacet[v];
+  }
+  m.tv.resize(4 * static_cast<std::size_t>(kt));
+  m.tn.resize(4 * static_cast<std::size_t>(kt));
+  m.tsub.resize(4 * static_cast<std::size_t>(kt));
+  m.tseg.assign(kt, 0);
+  const bool regions = !plc.regions.empty();
+  if (regions) m.tregion.resize(kt);
+  for (int t = 0; t < nt; ++t) {
+    const int u = new_tet[t];
+    if (u < 0) continue;
+    for (int k = 0; k < 4; ++k) {
+      m.tv[4 * u + k] = new_point[full.tv[4 * t + k]];
+      m.tn[4 * u + k] = map_face(full.tn[4 * t + k]);
+      const int s = full.tsub[4 * t + k];
+      m.tsub[4 * u + k] = s < 0 ? -1 : new_sub[s];
+    }
+    if (regions) {
+      const int seed = plc.cell_region[cell[t]];
+      m.tregion[u] = seed < 0 ? 0 : plc.regions[seed].attribute;
+    }
+  }
+  m.sv.resize(3 * static_cast<std::size_t>(ks));
+  m.st.resize(2 * static_cast<std::size_t>(ks));
+  m.sfacet.resize(ks);
+  for (int s = 0; s < ns; ++s) {
+    const int u = new_sub[s];
+    if (u < 0) continue;
+    for (int k = 0; k < 3; ++k) m.sv[3 * u + k] = new_point[full.sv[3 * s + k]];
+    m.st[2 * u] = map_face(full.st[2 * s]);
+    m.st[2 * u + 1] = map_face(full.st[2 * s + 1]);
+    m.sfacet[u] = full.sfacet[s];
+  }
+  return m;
+}
+
+// tseg: an edge is a subsegment iff both ends lie on one segment (its input endpoints, or
+// points that TetGen put on it).
+void mark_subsegments(const Plc& plc, HostTetMesh& m) {
+  const int ng = static_cast<int>(plc.segments.size());
+  m.seg.resize(2 * static_cast<std::size_t>(ng));
+  std::unordered_map<std::uint64_t, int> by_ends;
+  by_ends.reserve(2 * static_cast<std::size_t>(ng));
+  for (int g = 0; g < ng; ++g) {
+    m.seg[2 * g] = plc.segments[g][0];
+    m.seg[2 * g + 1] = plc.segments[g][1];
+    by_ends[edge_key(plc.segments[g][0], plc.segments[g][1])] = g;
+  }
+  auto on = [&](int v, int g) {
+    return v < m.input_points ? (m.seg[2 * g] == v || m.seg[2 * g + 1] == v)
+                              : (m.ptype[v] == m3d::kSegmentPoint && m.pseg[v] == g);
+  };
+  const int nt = m.tets();
+#pragma omp parallel for schedule(static)
+  for (int t = 0; t < nt; ++t) {
+    std::uint8_t bits = 0;
+    for (int e = 0; e < 6; ++e) {
+      const int a = m.tv[4 * t + m3d::edge_corner(e, 0)], b = m.tv[4 * t + m3d::edge_corner(e, 1)];
+      bool sub;
+      if (a < m.input_points && b < m.input_points) sub = by_ends.count(edge_key(a, b)) > 0;
+      else if (a >= m.input_points) sub = m.ptype[a] == m3d::kSegmentPoint && on(b, m.pseg[a]);
+      else sub = m.ptype[b] == m3d::kSegmentPoint && on(a, m.pseg[b]);
+      if (sub) bits |= static_cast<std::uint8_t>(m3d::edge_bit(e));
+    }
+    m.tseg[t] = bits;
+  }
+}
+
+}  // namespace
+
+m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks) {
+  if (plc.triangle_cell.size() != plc.triangles.size() || plc.cell_in_domain.empty())
+    throw Error(Status::InvalidInput, "initial_cdt needs a closed surface checked with require_closed");
+  if (callbacks.progress) callbacks.progress(0.0, "constrained Delaunay tetrahedralization (TetGen)");
+  tetgenio in, out;
+  fill_input(plc, in);
+  try {
+    run_tetgen("pnO0JQ", in, out);
+  } catch (const Error& e) {
+    if (e.status() == Status::OutOfDeviceMemory) throw;
+    if (callbacks.warning)
+      callbacks.warning(std::string("TetGen's constrained Delaunay tetrahedralization failed (") + e.what() +
+                        "); retrying with the input surface kept unsplit (-Y): the result may not be "
+                        "constrained Delaunay everywhere");
+    out.deinitialize();
+    out.initialize();
+    run_tetgen("pYnO0JQ", in, out);
+  }
+  if (callbacks.abort && callbacks.abort()) throw Error(Status::Aborted, "aborted after the initial CDT");
+  const HostTetMesh full = convert(plc, out);
+  HostTetMesh m = keep_domain(plc, full, tet_cells(plc, full));
+  mark_subsegments(plc, m);
+#ifndef NDEBUG
+  m3d::check_host_mesh(m);
+#endif
+  if (callbacks.progress) callbacks.progress(1.0, "constrained Delaunay tetrahedralization done");
+  return m;
+}
+
+}  // namespace gdr::cdt3d

@@ -1,0 +1,197 @@
+// Self-intersection search: triangles binned by their boxes into a uniform grid (one
+// counted array), each candidate pair tested once, in the first grid cell both boxes share,
+// with the exact test of geometry.h. Cells are processed in parallel.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "cdt3d/geometry.h"
+#include "cdt3d/internal.h"
+
+namespace gdr::cdt3d {
+namespace {
+
+struct Box {
+  double lo[3], hi[3];
+};
+
+struct Grid {
+  double origin[3] = {0, 0, 0};
+  double cell = 1;
+  long long n[3] = {1, 1, 1};
+  long long cell_of(double v, int axis) const {
+    const long long c = static_cast<long long>(std::floor((v - origin[axis]) / cell));
+    return std::clamp<long long>(c, 0, n[axis] - 1);
+  }
+  long long cells() const { return n[0] * n[1] * n[2]; }
+};
+
+}  // namespace
+
+long long find_clashing_triangles(const std::vector<Point3>& points,
+                                  const std::vector<std::array<int, 3>>& triangles,
+                                  std::size_t max_pairs, std::vector<std::array<int, 2>>& pairs) {
+  pairs.clear();
+  const long long nt = static_cast<long long>(triangles.size());
+  if (nt < 2) return 0;
+  std::vector<Box> box(nt);
+  Box all{{HUGE_VAL, HUGE_VAL, HUGE_VAL}, {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}};
+  double extent_sum = 0;
+  for (long long t = 0; t < nt; ++t) {
+    Box& b = box[t];
+    for (int d = 0; d < 3; ++d) {
+      b.lo[d] = HUGE_VAL;
+      b.hi[d] = -HUGE_VAL;
+    }
+    for (int k = 0; k < 3; ++k) {
+      const double* p = geom::xyz(points[triangles[t][k]]);
+      for (int d = 0; d < 3; ++d) {
+        b.lo[d] = std::min(b.lo[d], p[d]);
+        b.hi[d] = std::max(b.hi[d], p[d]);
+      }
+    }
+    double e = 0;
+    for (int d = 0; d < 3; ++d) {
+      all.lo[d] = std::min(all.lo[d], b.lo[d]);
+      all.hi[d] = std::max(all.hi[d], b.hi[d]);
+      e = std::max(e, b.hi[d] - b.lo[d]);
+    }
+    extent_sum += e;
+  }
+
+  // Cells about the size of an average triangle, but at most ~2 cells per triangle and a
+  // bounded number of (triangle, cell) entries: long thin triangles would otherwise fill
+  // many cells.
+  Grid grid;
+  double span = 0;
+  for (int d = 0; d < 3; ++d) {
+    grid.origin[d] = all.lo[d];
+    span = std::max(span, all.hi[d] - all.lo[d]);
+  }
+  grid.cell = std::max(extent_sum / nt, span * 1e-9);
+  if (!(grid.cell > 0)) grid.cell = 1;
+  std::vector<long long> entry_start;
+  for (;;) {
+    for (int d = 0; d < 3; ++d)
+      grid.n[d] = std::max<long long>(1, static_cast<long long>((all.hi[d] - all.lo[d]) / grid.cell) + 1);
+    if (grid.cells() > 2 * nt + 64) {
+      grid.cell *= std::cbrt(static_cast<double>(grid.cells()) / (2 * nt + 64)) * 1.01;
+      continue;
+    }
+    long long entries = 0;
+    for (long long t = 0; t < nt; ++t) {
+      long long c = 1;
+      for (int d = 0; d < 3; ++d) c *= grid.cell_of(box[t].hi[d], d) - grid.cell_of(box[t].lo[d], d) + 1;
+      entries += c;
+    }
+    if (entries > 16 * nt + 1024) {
+      grid.cell *= 1.5;
+      continue;
+    }
+    break;
+  }
+
+  // Each triangle's cell range, then a counted array: cell -> triangles, in increasing
+  // order within a cell.
+  const long long ncells = grid.cells();
+  std::vector<std::array<int, 6>> range(nt);  // lo x, y, z, hi x, y, z
+#pragma omp parallel for schedule(static)
+  for (long long t = 0; t < nt; ++t)
+    for (int d = 0; d < 3; ++d) {
+      range[t][d] = static_cast<int>(grid.cell_of(box[t].lo[d], d));
+      range[t][3 + d] = static_cast<int>(grid.cell_of(box[t].hi[d], d));
+    }
+  std::vector<int> count(ncells + 1, 0);
+  auto for_cells = [&](long long t, auto&& f) {
+    const auto& r = range[t];
+    for (long long x = r[0]; x <= r[3]; ++x)
+      for (long long y = r[1]; y <= r[4]; ++y)
+        for (long long z = r[2]; z <= r[5]; ++z) f((x * grid.n[1] + y) * grid.n[2] + z);
+  };
+  for (long long t = 0; t < nt; ++t) for_cells(t, [&](long long c) { ++count[c + 1]; });
+  for (long long c = 0; c < ncells; ++c) count[c + 1] += count[c];
+  std::vector<int> items(count[ncells]);
+  {
+    std::vector<int> fill(count.begin(), count.end() - 1);
+    for (long long t = 0; t < nt; ++t)
+      for_cells(t, [&](long long c) { items[fill[c]++] = static_cast<int>(t); });
+  }
+
+  auto overlap = [&](int i, int j) {
+    for (int d = 0; d < 3; ++d)
+      if (box[i].hi[d] < box[j].lo[d] || box[j].hi[d] < box[i].lo[d]) return false;
+    return true;
+  };
+  // The pair is tested in the lowest cell both boxes cover.
+  auto first_common_cell = [&](int i, int j) {
+    const long long x = std::max(range[i][0], range[j][0]), y = std::max(range[i][1], range[j][1]),
+                    z = std::max(range[i][2], range[j][2]);
+    return (x * grid.n[1] + y) * grid.n[2] + z;
+  };
+
+  const std::size_t keep = std::max<std::size_t>(max_pairs, 1) * 64;  // per thread, before sorting
+  long long total = 0;
+#pragma omp parallel
+  {
+    std::vector<std::array<int, 2>> mine;
+    long long found = 0;
+#pragma omp for schedule(dynamic, 256) nowait
+    for (long long c = 0; c < ncells; ++c) {
+      for (int a = count[c]; a < count[c + 1]; ++a) {
+        const int i = items[a];
+        for (int b = a + 1; b < count[c + 1]; ++b) {
+          const int j = items[b];
+          if (!overlap(i, j) || first_common_cell(i, j) != c) continue;
+          if (!geom::triangles_clash(points, triangles[i], triangles[j])) continue;
+          ++found;
+          if (mine.size() < keep) mine.push_back({i, j});
+        }
+      }
+    }
+#pragma omp critical
+    {
+      total += found;
+      pairs.insert(pairs.end(), mine.begin(), mine.end());
+    }
+  }
+  std::sort(pairs.begin(), pairs.end());
+  if (pairs.size() > max_pairs) pairs.resize(max_pairs);
+  return total;
+}
+
+EdgeTable build_edges(const std::vector<std::array<int, 3>>& triangles) {
+  // Bucket every edge (a < b) by a, then sort each small bucket by (b, triangle): linear
+  // work instead of one big sort.
+  const long long nt = static_cast<long long>(triangles.size());
+  int nv = 0;
+  for (const auto& t : triangles) nv = std::max({nv, t[0] + 1, t[1] + 1, t[2] + 1});
+  std::vector<int> start(nv + 1, 0);
+  for (const auto& t : triangles)
+    for (int k = 0; k < 3; ++k) ++start[std::min(t[k], t[(k + 1) % 3]) + 1];
+  for (int v = 0; v < nv; ++v) start[v + 1] += start[v];
+  std::vector<std::pair<int, int>> slot(3 * nt);  // (b, triangle) in a's bucket
+  {
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (long long t = 0; t < nt; ++t)
+      for (int k = 0; k < 3; ++k) {
+        const int a = triangles[t][k], b = triangles[t][(k + 1) % 3];
+        slot[fill[std::min(a, b)]++] = {std::max(a, b), static_cast<int>(t)};
+      }
+  }
+#pragma omp parallel for schedule(dynamic, 1024)
+  for (int v = 0; v < nv; ++v) std::sort(slot.begin() + start[v], slot.begin() + start[v + 1]);
+  EdgeTable table;
+  table.tri.resize(slot.size());
+  for (int a = 0; a < nv; ++a)
+    for (int i = start[a]; i < start[a + 1]; ++i) {
+      if (i == start[a] || slot[i].first != slot[i - 1].first) {
+        table.start.push_back(i);
+        table.edge.push_back({a, slot[i].first});
+      }
+      table.tri[i] = slot[i].second;
+    }
+  table.start.push_back(static_cast<int>(slot.size()));
+  return table;
+}
+
+}  // namespace gdr::cdt3d

@@ -1,0 +1,424 @@
+// The 3D front end: check_surface (each bad-input class with its own error naming the
+// items; cleaning, facets, segments, cells and volume) and initial_cdt (TetGen mapped into
+// HostTetMesh, checked by check_host_mesh and the validators), on hand-made surfaces and on
+// every surface of ../shared/data.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <functional>
+#include <string>
+
+#include "cdt3d/cdt3d.h"
+#include "cdt3d/geometry.h"
+#include "gdr/error.h"
+#include "gdr/io.h"
+#include "gdr/validate.h"
+#include "mesh3d/host_mesh.h"
+#include "mesh3d/tet_topology.h"
+#include "surfaces.h"
+
+namespace {
+
+using namespace gdr;
+using cdt3d::check_surface;
+using cdt3d::initial_cdt;
+using cdt3d::Plc;
+using test::add_box;
+using test::unit_cube;
+
+// The error check_surface throws for `s` (status and message); fails the test if none.
+Error error_of(const Surface& s, cdt3d::CheckOptions options = {}) {
+  try {
+    check_surface(s, options);
+  } catch (const Error& e) {
+    return e;
+  }
+  ADD_FAILURE() << "no error";
+  return Error(Status::Ok, "");
+}
+
+bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+double tet_volume(const m3d::HostTetMesh& m, int t) {
+  auto p = [&](int k) {
+    const int v = m.tv[4 * t + k];
+    return Point3{m.xyz[3 * v], m.xyz[3 * v + 1], m.xyz[3 * v + 2]};
+  };
+  return gdr::tet_volume(p(0), p(1), p(2), p(3));
+}
+
+double mesh_volume(const m3d::HostTetMesh& m) {
+  double v = 0;
+  for (int t = 0; t < m.tets(); ++t) v += tet_volume(m, t);
+  return v;
+}
+
+// The HostTetMesh as a TetMesh, with its subsegments, for the validators.
+TetMesh to_tetmesh(const m3d::HostTetMesh& m) {
+  TetMesh out;
+  for (int v = 0; v < m.points(); ++v) {
+    out.points.push_back({m.xyz[3 * v], m.xyz[3 * v + 1], m.xyz[3 * v + 2]});
+    out.point_type.push_back(static_cast<PointType>(m.ptype[v]));
+  }
+  for (int t = 0; t < m.tets(); ++t) {
+    out.tets.push_back({m.tv[4 * t], m.tv[4 * t + 1], m.tv[4 * t + 2], m.tv[4 * t + 3]});
+    for (int e = 0; e < 6; ++e)
+      if (m.tseg[t] & m3d::edge_bit(e)) {
+        int a = m.tv[4 * t + m3d::edge_corner(e, 0)], b = m.tv[4 * t + m3d::edge_corner(e, 1)];
+        if (a > b) std::swap(a, b);
+        out.subsegments.push_back({a, b});
+      }
+  }
+  std::sort(out.subsegments.begin(), out.subsegments.end());
+  out.subsegments.erase(std::unique(out.subsegments.begin(), out.subsegments.end()), out.subsegments.end());
+  for (int s = 0; s < m.subfaces(); ++s) {
+    out.subfaces.push_back({m.sv[3 * s], m.sv[3 * s + 1], m.sv[3 * s + 2]});
+    out.subface_facet.push_back(m.sfacet[s]);
+  }
+  return out;
+}
+
+// The PLC as a surface for the validators (its triangles and segments).
+Surface plc_surface(const Plc& plc) {
+  Surface s;
+  s.points = plc.points;
+  s.triangles = plc.triangles;
+  s.segments = plc.segments;
+  return s;
+}
+
+// initial_cdt with every check: links, positive tets, volume, validators.
+m3d::HostTetMesh checked_cdt(const Plc& plc, bool expect_delaunay = true) {
+  m3d::HostTetMesh m = initial_cdt(plc);
+  EXPECT_NO_THROW(m3d::check_host_mesh(m));
+  for (int t = 0; t < m.tets(); ++t) EXPECT_GT(tet_volume(m, t), 0) << "tet " << t;
+  EXPECT_NEAR(mesh_volume(m), plc.volume, 1e-12 * std::max(1.0, std::fabs(plc.volume)));
+  EXPECT_EQ(m.segments(), static_cast<int>(plc.segments.size()));
+  const Surface s = plc_surface(plc);
+  ValidateOptions vo;
+  vo.check_delaunay = expect_delaunay;
+  const ValidationReport r = validate_tetmesh(to_tetmesh(m), &s, vo);
+  EXPECT_TRUE(r.valid) << r.summary();
+  return m;
+}
+
+// ---- Bad inputs: one error class each, naming the items -----------------------------------
+
+TEST(CheckSurface, NonFiniteCoordinates) {
+  Surface s = unit_cube();
+  s.points[3].y = std::nan("");
+  s.points[5].z = HUGE_VAL;
+  const Error e = error_of(s);
+  EXPECT_EQ(e.status(), Status::InvalidInput);
+  EXPECT_TRUE(has(e.what(), "non-finite")) << e.what();
+  EXPECT_TRUE(has(e.what(), "point 3, point 5")) << e.what();
+}
+
+TEST(CheckSurface, TooFewOrCoplanarPoints) {
+  Surface s;
+  s.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  s.triangles = {{0, 1, 2}, {0, 2, 1}};
+  Error e = error_of(s);
+  EXPECT_EQ(e.status(), Status::InvalidInput);
+  EXPECT_TRUE(has(e.what(), "fewer than 4")) << e.what();
+  s.points.push_back({1, 1, 0});
+  s.triangles = {{0, 1, 3}, {0, 3, 2}, {0, 3, 1}, {0, 2, 3}};
+  e = error_of(s);
+  EXPECT_EQ(e.status(), Status::InvalidInput);
+  EXPECT_TRUE(has(e.what(), "coplanar")) << e.what();
+}
+
+TEST(CheckSurface, IndicesOutOfRange) {
+  Surface s = unit_cube();
+  s.triangles[2][1] = 8;
+  s.triangles[7][0] = -1;
+  s.segments.push_back({0, 11});
+  const Error e = error_of(s);
+  EXPECT_EQ(e.status(), Status::InvalidInput);
+  EXPECT_TRUE(has(e.what(), "triangle 2 (vertex 8), triangle 7 (vertex -1), segment 0 (vertex 11)")) << e.what();
+}
+
+TEST(CheckSurface, DegenerateTriangles) {
+  Surface s = unit_cube();
+  s.triangles[4] = {1, 1, 2};  // repeated index
+  s.points.push_back({0.5, 0, 0});
+  s.triangles.push_back({0, 8, 1});  // collinear corners: zero area
+  const Error e = error_of(s);
+  EXPECT_EQ(e.status(), Status::InvalidInput);
+  EXPECT_TRUE(has(e.what(), "degenerate")) << e.what();
+  EXPECT_TRUE(has(e.what(), "4 (1, 1, 2), 12 (0, 8, 1)")) << e.what();
+  // A triangle whose two corners are duplicates of each other collapses too.
+  Surface d = unit_cube();
+  d.points.push_back(d.points[2]);
+  d.triangles[0] = {2, 8, 6};
+  EXPECT_TRUE(has(error_of(d).what(), "degenerate"));
+}
+
+TEST(CheckSurface, OpenBoundaryNamesEdgesAndSuggestsTheSurfaceMesher) {
+  Surface s = unit_cube();
+  s.triangles.pop_back();
+  const Error e = error_of(s);
+  EXPECT_EQ(e.status(), Status::InvalidInput);
+  EXPECT_TRUE(has(e.what(), "open")) << e.what();
+  EXPECT_TRUE(has(e.what(), "(4, 6), (4, 7), (6, 7)")) << e.what();  // input vertex ids
+  EXPECT_TRUE(has(e.what(), "gdr surface")) << e.what();
+  // The restricted mesher's checks let it through.
+  cdt3d::CheckOptions open;
+  open.require_closed = false;
+  EXPECT_NO_THROW(check_surface(s, open));
+}
+
+TEST(CheckSurface, SelfIntersectionsNamePairsAndCount) {
+  Surface s = unit_cube();
+  add_box(s, {0.5, 0.5, 0.5}, {1.5, 1.5, 1.5});  // two cubes passing through each other
+  const Error e = error_of(s);
+  EXPECT_EQ(e.status(), Status::SelfIntersectingInput);
+  EXPECT_TRUE(has(e.what(), "intersects itself")) << e.what();
+  EXPECT_TRUE(has(e.what(), " in all")) << e.what();
+  EXPECT_TRUE(has(e.what(), "triangle pairs 2 and 16, 2 and 20")) << e.what();  // x = 1 face
+}
+
+TEST(CheckSurface, TouchingAtAVertexOrAlongAnEdgeIsNoIntersection) {
+  Surface s = unit_cube();
+  add_box(s, {1, 1, 1}, {2, 2, 2});  // shares the corner (1, 1, 1) as another vertex
+  EXPECT_NO_THROW(check_surface(s));  // duplicate point merged; the shells touch at it
+  Surface t = unit_cube();
+  add_box(t, {1, 0, 1}, {2, 1, 2});  // shares the edge x = 1, z = 1
+  const Plc plc = check_surface(t);
+  EXPECT_NEAR(plc.volume, 2.0, 1e-12);
+}
+
+TEST(CheckSurface, SeedOnTheSurfaceIsRefused) {
+  Surface s = unit_cube();
+  s.holes.push_back({1, 0.5, 0.5});
+  const Error e = error_of(s);
+  EXPECT_EQ(e.status(), Status::InvalidInput);
+  EXPECT_TRUE(has(e.what(), "hole seed 0")) << e.what();
+}
+
+TEST(CheckSurface, SegmentNotAnEdgeIsRefused) {
+  Surface s = unit_cube();
+  s.segments.push_back({0, 7});  // the cube's main diagonal: free in the volume
+  const Error e = error_of(s);
+  EXPECT_EQ(e.status(), Status::InvalidInput);
+  EXPECT_TRUE(has(e.what(), "0 (0, 7)")) << e.what();
+  EXPECT_TRUE(has(e.what(), "not supported yet")) << e.what();
+}
+
+// ---- Exact triangle tests ---------------------------------------------------------------
+
+TEST(TriangleClash, SharedVertexAndEdgeCases) {
+  std::vector<Point3> p = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 0},
+                           {-1, 0.5, -1}, {0.2, 0.2, 0}, {0.5, 0.5, 0}, {0.25, 0.25, 0}};
+  using geom = std::function<bool(std::array<int, 3>, std::array<int, 3>)>;
+  geom clash = [&](std::array<int, 3> a, std::array<int, 3> b) { return cdt3d::geom::triangles_clash(p, a, b); };
+  EXPECT_FALSE(clash({0, 1, 2}, {0, 1, 3}));   // shared edge, folded
+  EXPECT_FALSE(clash({0, 1, 2}, {1, 4, 2}));   // shared edge, flat, opposite sides
+  EXPECT_TRUE(clash({0, 1, 2}, {0, 1, 7}));    // shared edge, flat, same side: overlap
+  EXPECT_FALSE(clash({0, 1, 2}, {0, 3, 5}));   // shared vertex only
+  EXPECT_TRUE(clash({0, 1, 4}, {0, 2, 6}));    // shared vertex, coplanar, overlapping angles
+  EXPECT_TRUE(clash({0, 1, 2}, {3, 5, 8}));    // no shared vertex: crosses through the middle
+  EXPECT_TRUE(clash({0, 1, 2}, {8, 3, 4}));    // an edge of one runs inside the other
+}
+
+// ---- Cleaning, facets, segments, cells --------------------------------------------------
+
+TEST(CheckSurface, CubeHasSixFacetsAndTwelveSegments) {
+  const Plc plc = check_surface(unit_cube());
+  EXPECT_EQ(plc.points.size(), 8u);
+  EXPECT_EQ(plc.triangles.size(), 12u);
+  EXPECT_EQ(plc.facet_origin.size(), 6u);
+  EXPECT_EQ(plc.segments.size(), 12u);
+  EXPECT_NEAR(plc.volume, 1.0, 1e-15);
+  for (int t = 0; t < 12; t += 2) EXPECT_EQ(plc.triangle_facet[t], plc.triangle_facet[t + 1]);
+  EXPECT_EQ(plc.facet_origin[2], 4);  // reported as its first input triangle
+}
+
+TEST(CheckSurface, InputFacetIdsAreReportedAndInputSegmentsKept) {
+  Surface s = unit_cube();
+  for (int t = 0; t < 12; ++t) s.triangle_facet.push_back(100 + t / 2);
+  s.segments.push_back({0, 6});  // the diagonal of face x = 0: inside a facet
+  const Plc plc = check_surface(s);
+  EXPECT_EQ(plc.facet_origin, (std::vector<int>{100, 101, 102, 103, 104, 105}));
+  EXPECT_EQ(plc.segments.size(), 13u);
+}
+
+TEST(CheckSurface, DuplicatesAreMergedAndReported) {
+  Surface s = unit_cube();
+  s.points.push_back(s.points[0]);       // point 8 = point 0
+  s.points.push_back({-0.0, 1, 0});      // point 9 = point 2, with -0
+  s.points.push_back({7, 7, 7});         // point 10: unused
+  s.triangles[0][0] = 8;
+  s.triangles[6][0] = 9;
+  s.triangles.push_back({s.triangles[5][2], s.triangles[5][0], s.triangles[5][1]});  // duplicate of 5
+  std::vector<std::string> warnings;
+  Callbacks cb;
+  cb.warning = [&](const std::string& w) { warnings.push_back(w); };
+  const Plc plc = check_surface(s, {}, cb);
+  EXPECT_EQ(plc.points.size(), 8u);
+  EXPECT_EQ(plc.point_map[8], 0);
+  EXPECT_EQ(plc.point_map[9], 2);
+  EXPECT_EQ(plc.point_map[10], -1);
+  EXPECT_EQ(plc.duplicate_points_merged, 2);
+  EXPECT_EQ(plc.unused_points, 1);
+  EXPECT_EQ(plc.duplicate_triangles_merged, 1);
+  EXPECT_EQ(plc.triangles.size(), 12u);
+  EXPECT_EQ(plc.triangle_origin.back(), 11);
+  bool points = false, triangles = false;
+  for (const auto& w : warnings) {
+    points = points || has(w, "merged 2 duplicate points");
+    triangles = triangles || has(w, "merged 1 duplicate triangles") && has(w, "12 = 5");
+  }
+  EXPECT_TRUE(points && triangles);
+}
+
+TEST(CheckSurface, InconsistentOrientationIsFine) {
+  Surface s = unit_cube();
+  for (int t : {0, 3, 7, 8}) std::swap(s.triangles[t][0], s.triangles[t][1]);
+  EXPECT_NEAR(check_surface(s).volume, 1.0, 1e-15);
+}
+
+TEST(CheckSurface, NestedCubesMakeACavity) {
+  Surface s = unit_cube();
+  add_box(s, {0.25, 0.25, 0.25}, {0.75, 0.75, 0.75});
+  const Plc plc = check_surface(s);
+  EXPECT_NEAR(plc.volume, 1 - 0.125, 1e-15);
+  // A third shell inside the cavity is a body again.
+  add_box(s, {0.4, 0.4, 0.4}, {0.6, 0.6, 0.6});
+  EXPECT_NEAR(check_surface(s).volume, 1 - 0.125 + 0.008, 1e-15);
+}
+
+TEST(CheckSurface, InternalFacetKeepsBothSides) {
+  const Plc plc = check_surface(test::split_box());
+  EXPECT_NEAR(plc.volume, 2.0, 1e-15);
+  EXPECT_EQ(plc.facet_origin.size(), 11u);  // 10 boundary squares and the internal one
+  EXPECT_EQ(plc.segments.size(), 20u);      // 12 box edges + 4 around x = 1 + ... see below
+}
+
+TEST(CheckSurface, SeedsDecideCells) {
+  Surface s = test::split_box();
+  s.holes.push_back({0.5, 0.5, 0.5});
+  std::vector<std::string> warnings;
+  Callbacks cb;
+  cb.warning = [&](const std::string& w) { warnings.push_back(w); };
+  Plc plc = check_surface(s, {}, cb);
+  EXPECT_NEAR(plc.volume, 1.0, 1e-15);
+  EXPECT_EQ(plc.outside_triangles, 10);  // the hole's boundary except the internal facet
+
+  // A region seed makes the cavity of nested cubes a body (a second material).
+  Surface n = unit_cube();
+  add_box(n, {0.25, 0.25, 0.25}, {0.75, 0.75, 0.75});
+  n.regions.push_back({{0.5, 0.5, 0.5}, 7, 0});
+  n.regions.push_back({{0.1, 0.1, 0.1}, 3, 0});
+  n.holes.push_back({5, 5, 5});  // outside: ignored with a warning
+  plc = check_surface(n, {}, cb);
+  EXPECT_NEAR(plc.volume, 1.0, 1e-15);
+  EXPECT_TRUE(has(warnings.back(), "hole seed 0 lies outside")) << warnings.back();
+}
+
+// ---- initial_cdt -----------------------------------------------------------------------------
+
+TEST(InitialCdt, Cube) {
+  const Plc plc = check_surface(unit_cube());
+  const m3d::HostTetMesh m = checked_cdt(plc);
+  EXPECT_EQ(m.points(), 8);
+  EXPECT_EQ(m.subfaces(), 12);
+  EXPECT_EQ(m.segments(), 12);
+  EXPECT_NEAR(mesh_volume(m), 1.0, 1e-15);
+  EXPECT_TRUE(m.tregion.empty());
+}
+
+TEST(InitialCdt, NestedCubesLeaveTheCavityEmpty) {
+  Surface s = unit_cube();
+  add_box(s, {0.25, 0.25, 0.25}, {0.75, 0.75, 0.75});
+  const m3d::HostTetMesh m = checked_cdt(check_surface(s));
+  EXPECT_NEAR(mesh_volume(m), 0.875, 1e-14);
+  EXPECT_EQ(m.subfaces(), 24);
+}
+
+TEST(InitialCdt, TwoDisjointCubes) {
+  Surface s = unit_cube();
+  add_box(s, {3, 0, 0}, {4, 1, 1});
+  const m3d::HostTetMesh m = checked_cdt(check_surface(s));
+  EXPECT_NEAR(mesh_volume(m), 2.0, 1e-14);
+}
+
+TEST(InitialCdt, BoxSplitByAnInternalFacetIntoTwoRegions) {
+  Surface s = test::split_box();
+  s.regions.push_back({{0.5, 0.5, 0.5}, 1, 0});
+  s.regions.push_back({{1.5, 0.5, 0.5}, 2, 0});
+  const m3d::HostTetMesh m = checked_cdt(check_surface(s));
+  ASSERT_EQ(m.tregion.size(), static_cast<std::size_t>(m.tets()));
+  double volume[3] = {0, 0, 0};
+  for (int t = 0; t < m.tets(); ++t) {
+    double cx = 0;
+    for (int k = 0; k < 4; ++k) cx += m.xyz[3 * m.tv[4 * t + k]] / 4;
+    EXPECT_EQ(m.tregion[t], cx < 1 ? 1 : 2) << "tet " << t;
+    volume[m.tregion[t]] += tet_volume(m, t);
+  }
+  EXPECT_NEAR(volume[1], 1.0, 1e-14);
+  EXPECT_NEAR(volume[2], 1.0, 1e-14);
+  // The internal facet's subfaces have a tet on both sides.
+  int internal = 0;
+  for (int f = 0; f < m.subfaces(); ++f) internal += m.st[2 * f] >= 0 && m.st[2 * f + 1] >= 0;
+  EXPECT_EQ(internal, 2);
+}
+
+TEST(InitialCdt, HoleSeedInAnInnerCube) {
+  Surface s = test::split_box();
+  s.holes.push_back({1.5, 0.5, 0.5});
+  const m3d::HostTetMesh m = checked_cdt(check_surface(s));
+  EXPECT_NEAR(mesh_volume(m), 1.0, 1e-14);
+  for (int f = 0; f < m.subfaces(); ++f) EXPECT_FALSE(m.st[2 * f] >= 0 && m.st[2 * f + 1] >= 0);
+  // Nested cubes with a region seed inside the inner one: both are meshed, as two regions.
+  Surface n = unit_cube();
+  add_box(n, {0.25, 0.25, 0.25}, {0.75, 0.75, 0.75});
+  n.regions.push_back({{0.5, 0.5, 0.5}, 9, 0});
+  const m3d::HostTetMesh r = checked_cdt(check_surface(n));
+  EXPECT_NEAR(mesh_volume(r), 1.0, 1e-14);
+  double inner = 0;
+  for (int t = 0; t < r.tets(); ++t)
+    if (r.tregion[t] == 9) inner += tet_volume(r, t);
+  EXPECT_NEAR(inner, 0.125, 1e-14);
+}
+
+// ---- Every surface of the shared data set ----------------------------------------------
+
+TEST(InitialCdt, SharedDataSurfaces) {
+  const std::filesystem::path dir = std::filesystem::path(GDR_SHARED_DATA_DIR) / "surfaces";
+  if (!std::filesystem::is_directory(dir)) GTEST_SKIP() << dir << " is absent (no ../shared here)";
+  std::vector<std::filesystem::path> files;
+  for (const auto& f : std::filesystem::directory_iterator(dir)) files.push_back(f.path());
+  std::sort(files.begin(), files.end());
+  ASSERT_FALSE(files.empty());
+  for (const auto& f : files) {
+    SCOPED_TRACE(f.filename().string());
+    const Surface s = io::read_surface(f.string());
+    const auto t0 = std::chrono::steady_clock::now();
+    const Plc plc = check_surface(s);
+    const auto t1 = std::chrono::steady_clock::now();
+    initial_cdt(plc);  // timed alone; checked below
+    const auto t2 = std::chrono::steady_clock::now();
+    const m3d::HostTetMesh m = checked_cdt(plc);
+    EXPECT_GT(plc.volume, 0);
+    std::printf("%-22s %7zu points %7zu triangles: check %.3f s; CDT %7d points %8d tets %7d subfaces "
+                "%6d segments %.3f s\n",
+                f.filename().string().c_str(), s.points.size(), s.triangles.size(),
+                std::chrono::duration<double>(t1 - t0).count(), m.points(), m.tets(), m.subfaces(),
+                m.segments(), std::chrono::duration<double>(t2 - t1).count());
+  }
+}
+
+TEST(CheckSurface, LargeSphereIsFast) {
+  const Surface s = test::icosphere(7);  // 327,680 triangles
+  const auto t0 = std::chrono::steady_clock::now();
+  const Plc plc = check_surface(s);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("check_surface on %zu triangles: %.3f s\n", s.triangles.size(), seconds);
+  EXPECT_NEAR(plc.volume, 4.0 / 3 * M_PI, 0.01);
+  EXPECT_LT(seconds, 10.0);  // loose: CI machines vary; the measured time is printed
+}
+
+}  // namespace
