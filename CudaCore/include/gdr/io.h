@@ -27,6 +27,9 @@ Surface read_off(const std::string& path);
 Surface read_stl(const std::string& path);   // ASCII or binary
 // Any of the surface formats above, by extension (.off, .stl, .poly, .smesh).
 Surface read_surface(const std::string& path);
+// The files read_surface(path) may read: `path`, and for a .poly or .smesh the .node beside
+// it (where a file whose point section is empty takes its points from).
+std::vector<std::string> surface_input_files(const std::string& path);
 
 // TetGen .node/.ele (4 or 10 nodes per tetrahedron, the first 4 used) as a TetMesh, with the
 // .face beside the .ele, when there is one, as subfaces. TetGen files store tetrahedra with
@@ -55,14 +58,25 @@ struct Attributes {
 // core-only build (e.g. the GPU machine) writes results too.
 void write_vtu(const std::string& path, const TriMesh& mesh, const Attributes& attributes = {});
 void write_vtp(const std::string& path, const TriMesh& mesh, const Attributes& attributes = {});
+// A TetMesh's .vtu also carries the point array PointType and, when the mesh has regions,
+// the cell array Region (its tet_region).
 void write_vtu(const std::string& path, const TetMesh& mesh, const Attributes& attributes = {});
 
-// Triangle .node/.ele (+ .poly of subsegments); TetGen .node/.ele/.face. `base` has no extension.
+// Triangle .node/.ele (+ .poly of subsegments); TetGen .node/.ele/.face, the .face with the
+// subfaces' input facet ids (subface_facet) as boundary markers when the mesh has them.
+// `base` has no extension.
 void write_triangle(const std::string& base, const TriMesh& mesh);
 void write_tetgen(const std::string& base, const TetMesh& mesh);
+// Medit .mesh (MeshVersionFormatted 2, Dimension 3): Vertices with the point type as
+// reference, Tetrahedra with the region attribute (1 without regions), Triangles (the
+// subfaces) with the input facet id + 1 (0 where unknown).
+void write_medit(const std::string& path, const TetMesh& mesh);
 
 // Writes by the extension of `path`: .vtu, .vtp, .node or .ele (Triangle files beside it).
 void write_mesh(const std::string& path, const TriMesh& mesh, const Attributes& attributes = {});
+// A TetMesh by .vtu, .mesh (Medit), or .node, .ele or .face (TetGen's three files).
 void write_mesh(const std::string& path, const TetMesh& mesh, const Attributes& attributes = {});
+// The files write_mesh(path, TetMesh) writes: `path`, or for .node/.ele/.face TetGen's three.
+std::vector<std::string> tetmesh_output_files(const std::string& path);
 
 }  // namespace gdr::io

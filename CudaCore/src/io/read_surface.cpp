@@ -83,19 +83,24 @@ TetMesh read_tetgen_mesh(const std::string& node_path, const std::string& ele_pa
   Tokens t;
   file.expect(t, 1, "the tetrahedron count header");
   const std::size_t n = file.count(t[0], 5, "tetrahedron count");
+  long long corners = 4;
   if (t.size() >= 2) {
-    const long long corners = file.integer(t[1], "nodes per tetrahedron");
+    corners = file.integer(t[1], "nodes per tetrahedron");
     if (corners != 4 && corners != 10)
       file.fail("nodes per tetrahedron must be 4 or 10, found " + std::to_string(corners));
   }
+  // The first attribute is TetGen's region attribute.
+  const bool regions = t.size() >= 3 && file.integer(t[2], "attribute count") > 0;
   mesh.tets.reserve(n);
   for (std::size_t i = 0; i < n; ++i) {
     const std::string what = "tetrahedron " + std::to_string(i);
-    file.expect(t, 5, what);
+    file.expect(t, 1 + corners + (regions ? 1 : 0), what);
     file.integer(t[0], "index of " + what);
     // TetGen's tetrahedra have orient3d < 0; swapping two corners gives ours (> 0).
     mesh.tets.push_back({vertex_index(file, t[2], nodes, what), vertex_index(file, t[1], nodes, what),
                          vertex_index(file, t[3], nodes, what), vertex_index(file, t[4], nodes, what)});
+    if (regions)
+      mesh.tet_region.push_back(static_cast<int>(file.real(t[1 + corners], "region of " + what)));
   }
   // Boundary / constrained faces, as TetGen and write_tetgen store them beside the .ele.
   const std::string face_path = strip_extension(ele_path) + ".face";
@@ -103,14 +108,18 @@ TetMesh read_tetgen_mesh(const std::string& node_path, const std::string& ele_pa
     TextFile faces(face_path);
     faces.expect(t, 1, "the face count header");
     const std::size_t nf = faces.count(t[0], 4, "face count");
+    // Boundary markers: the input facet of each face, as write_tetgen writes them.
+    const bool markers = t.size() >= 2 && faces.integer(t[1], "boundary marker flag") != 0;
     mesh.subfaces.reserve(nf);
     for (std::size_t i = 0; i < nf; ++i) {
       const std::string what = "face " + std::to_string(i);
-      faces.expect(t, 4, what);
+      faces.expect(t, markers ? 5 : 4, what);
       faces.integer(t[0], "index of " + what);
       mesh.subfaces.push_back({vertex_index(faces, t[1], nodes, what),
                                vertex_index(faces, t[2], nodes, what),
                                vertex_index(faces, t[3], nodes, what)});
+      if (markers)
+        mesh.subface_facet.push_back(static_cast<int>(faces.integer(t[4], "marker of " + what)));
     }
   }
   return mesh;
@@ -255,6 +264,12 @@ Surface read_stl(const std::string& path) {
   throw Error(Status::IoError,
               path + ": binary STL size " + std::to_string(data.size()) +
                   " does not match its triangle count (expected 84 + 50 * count bytes)");
+}
+
+std::vector<std::string> surface_input_files(const std::string& path) {
+  const std::string ext = extension_of(path);
+  if (ext != ".poly" && ext != ".smesh") return {path};
+  return {path, strip_extension(path) + ".node"};  // as read_poly_point_section finds it
 }
 
 Surface read_surface(const std::string& path) {

@@ -81,10 +81,13 @@ void write_tetgen(const std::string& base, const TetMesh& mesh) {
   // Files follow TetGen's orientation (orient3d < 0): swap two corners of ours.
   std::vector<std::array<int, 4>> tets(mesh.tets);
   for (auto& t : tets) std::swap(t[0], t[1]);
-  std::string ele = std::to_string(tets.size()) + " 4 0\n";
-  append_elements(ele, tets, nullptr);
-  std::string face = std::to_string(mesh.subfaces.size()) + " 0\n";
-  append_elements(face, mesh.subfaces, nullptr);
+  // The region as TetGen's regional attribute, the input facet as the face's boundary marker.
+  const bool regions = !tets.empty() && mesh.tet_region.size() == tets.size();
+  const bool facets = !mesh.subfaces.empty() && mesh.subface_facet.size() == mesh.subfaces.size();
+  std::string ele = std::to_string(tets.size()) + (regions ? " 4 1\n" : " 4 0\n");
+  append_elements(ele, tets, regions ? &mesh.tet_region : nullptr);
+  std::string face = std::to_string(mesh.subfaces.size()) + (facets ? " 1\n" : " 0\n");
+  append_elements(face, mesh.subfaces, facets ? &mesh.subface_facet : nullptr);
   write_file_atomically(base + ".node", node_file_3d(mesh.points));
   write_file_atomically(base + ".ele", ele);
   write_file_atomically(base + ".face", face);
@@ -99,12 +102,20 @@ void write_mesh(const std::string& path, const TriMesh& mesh, const Attributes& 
                                    "' for a triangle mesh (expected .vtu, .vtp, .node or .ele)");
 }
 
+std::vector<std::string> tetmesh_output_files(const std::string& path) {
+  const std::string ext = extension_of(path);
+  if (ext != ".node" && ext != ".ele" && ext != ".face") return {path};
+  const std::string base = strip_extension(path);
+  return {base + ".node", base + ".ele", base + ".face"};
+}
+
 void write_mesh(const std::string& path, const TetMesh& mesh, const Attributes& attributes) {
   const std::string ext = extension_of(path);
   if (ext == ".vtu") return write_vtu(path, mesh, attributes);
+  if (ext == ".mesh") return write_medit(path, mesh);
   if (ext == ".node" || ext == ".ele" || ext == ".face") return write_tetgen(strip_extension(path), mesh);
   throw Error(Status::IoError, path + ": unsupported output format '" + ext +
-                                   "' for a tetrahedral mesh (expected .vtu, .node, .ele or .face)");
+                                   "' for a tetrahedral mesh (expected .vtu, .mesh, .node, .ele or .face)");
 }
 
 }  // namespace gdr::io

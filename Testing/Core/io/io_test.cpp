@@ -1,11 +1,13 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <set>
 #include <string>
 
 #include "gdr/error.h"
@@ -259,7 +261,7 @@ TriMesh strip(int n) {
 TetMesh one_tet_pair() {
   TetMesh m;
   m.points = {{0, 0, 0}, {0.1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0.4, 1, 1}};
-  m.tets = {{0, 1, 2, 3}, {1, 2, 3, 4}};
+  m.tets = {{1, 0, 2, 3}, {2, 1, 3, 4}};  // positive: orient3d > 0
   m.subfaces = {{0, 2, 1}};
   m.point_type.assign(5, PointType::Input);
   return m;
@@ -324,6 +326,212 @@ TEST(Write, TetgenFilesUseTetgensOrientation) {
   std::vector<long long> ca = corners(la), cb = corners(lb);
   for (auto& v : ca) v -= 1;  // TetGen wrote 1-based, we write 0-based
   EXPECT_EQ(ca, cb);
+}
+
+// Two unit cubes side by side along x, six Kuhn tetrahedra each, regions 1 and 2; the
+// subfaces are the box sides (facets 0-5: x=0, x=2, y=0, y=1, z=0, z=1) and the internal
+// facet x=1 (facet 6). x is scaled so that the last point has x = 0.1 * 11 (read_vtk.py).
+TetMesh two_cubes() {
+  TetMesh m;
+  const double sx = 0.1 * 11 / 2;
+  auto id = [](int i, int j, int k) { return (k * 2 + j) * 3 + i; };
+  for (int k = 0; k < 2; ++k)
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 3; ++i) {
+        m.points.push_back({sx * i, 1.0 * j, 1.0 * k});
+        m.point_type.push_back(i == 1 ? PointType::Facet : PointType::Input);
+      }
+  const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  for (int i = 0; i < 2; ++i)
+    for (const auto& p : perms) {
+      int c[3] = {i, 0, 0};
+      std::array<int, 4> t;
+      t[0] = id(c[0], c[1], c[2]);
+      for (int s = 0; s < 3; ++s) {
+        ++c[p[s]];
+        t[s + 1] = id(c[0], c[1], c[2]);
+      }
+      const auto& q = m.points;
+      if (tet_volume(q[t[0]], q[t[1]], q[t[2]], q[t[3]]) < 0) std::swap(t[2], t[3]);
+      m.tets.push_back(t);
+      m.tet_region.push_back(i + 1);
+    }
+  // A face is a subface when its corners share a grid plane x = 0, 1, 2, y or z = 0, 1.
+  std::set<std::array<int, 3>> seen;
+  for (const auto& t : m.tets)
+    for (int f = 0; f < 4; ++f) {
+      std::array<int, 3> face;  // the corners other than corner f
+      for (int k = 0, n = 0; k < 4; ++k)
+        if (k != f) face[n++] = t[k];
+      std::array<int, 3> key = face;
+      std::sort(key.begin(), key.end());
+      if (!seen.insert(key).second) continue;
+      auto plane = [&](int axis, int value) {
+        for (int v : face)
+          if ((axis == 0 ? v % 3 : axis == 1 ? (v / 3) % 2 : v / 6) != value) return false;
+        return true;
+      };
+      const int facet = plane(0, 0) ? 0 : plane(0, 2) ? 1 : plane(1, 0) ? 2 : plane(1, 1) ? 3
+                      : plane(2, 0) ? 4 : plane(2, 1) ? 5 : plane(0, 1) ? 6 : -1;
+      if (facet < 0) continue;
+      m.subfaces.push_back(face);
+      m.subface_facet.push_back(facet);
+    }
+  return m;
+}
+
+void expect_same_mesh(const TetMesh& a, const TetMesh& b) {
+  ASSERT_EQ(a.points.size(), b.points.size());
+  for (std::size_t i = 0; i < a.points.size(); ++i) {
+    EXPECT_EQ(a.points[i].x, b.points[i].x);
+    EXPECT_EQ(a.points[i].y, b.points[i].y);
+    EXPECT_EQ(a.points[i].z, b.points[i].z);
+  }
+  EXPECT_EQ(a.tets, b.tets);
+  EXPECT_EQ(a.subfaces, b.subfaces);
+  EXPECT_EQ(a.subface_facet, b.subface_facet);
+  EXPECT_EQ(a.tet_region, b.tet_region);
+}
+
+TEST(Write, TwoCubesFixtureIsValid) {
+  const TetMesh m = two_cubes();
+  EXPECT_EQ(m.tets.size(), 12u);
+  EXPECT_EQ(m.subfaces.size(), 2u * 10 + 2);  // 10 box squares and the internal one
+  const ValidationReport r = validate_tetmesh(m, nullptr);
+  EXPECT_TRUE(r.valid) << r.summary();
+  EXPECT_DOUBLE_EQ(r.quality.total_measure, 1.1);
+}
+
+TEST(Write, TetgenRoundTripKeepsRegionsAndFacets) {
+  const TetMesh m = two_cubes();
+  io::write_mesh(kOut + "/cubes.face", m);
+  for (const std::string& f : io::tetmesh_output_files(kOut + "/cubes.face"))
+    EXPECT_TRUE(exists(f)) << f;
+  TetMesh r = io::read_tetgen_mesh(kOut + "/cubes.node", kOut + "/cubes.ele");
+  r.point_type = m.point_type;  // .node files carry no point types
+  expect_same_mesh(m, r);
+  EXPECT_TRUE(validate_tetmesh(r, nullptr).valid);
+}
+
+// A small Medit reader: the sections write_medit writes, each "Keyword count" then rows.
+struct MeditMesh {
+  TetMesh mesh;
+  std::vector<int> vertex_ref, tet_ref, triangle_ref;
+  int version = 0, dimension = 0;
+  bool end = false;
+};
+
+MeditMesh read_medit(const std::string& path) {
+  std::ifstream in(path);
+  MeditMesh r;
+  std::string keyword;
+  auto rows = [&](int corners, auto add) {
+    std::size_t n = 0;
+    in >> n;
+    for (std::size_t i = 0; i < n; ++i) {
+      std::array<int, 4> v{};
+      for (int k = 0; k < corners; ++k) {
+        in >> v[k];
+        --v[k];  // 1-based
+      }
+      int ref = 0;
+      in >> ref;
+      add(v, ref);
+    }
+  };
+  while (in >> keyword) {
+    if (keyword == "MeshVersionFormatted") {
+      in >> r.version;
+    } else if (keyword == "Dimension") {
+      in >> r.dimension;
+    } else if (keyword == "Vertices") {
+      std::size_t n = 0;
+      in >> n;
+      for (std::size_t i = 0; i < n; ++i) {
+        Point3 p;
+        int ref = 0;
+        in >> p.x >> p.y >> p.z >> ref;
+        r.mesh.points.push_back(p);
+        r.vertex_ref.push_back(ref);
+      }
+    } else if (keyword == "Tetrahedra") {
+      rows(4, [&](const std::array<int, 4>& v, int ref) {
+        r.mesh.tets.push_back(v);
+        r.tet_ref.push_back(ref);
+      });
+    } else if (keyword == "Triangles") {
+      rows(3, [&](const std::array<int, 4>& v, int ref) {
+        r.mesh.subfaces.push_back({v[0], v[1], v[2]});
+        r.triangle_ref.push_back(ref);
+      });
+    } else if (keyword == "End") {
+      r.end = true;
+    } else {
+      ADD_FAILURE() << path << ": unexpected keyword " << keyword;
+      break;
+    }
+  }
+  return r;
+}
+
+TEST(Write, MeditReadsBackWithItsReferences) {
+  const TetMesh m = two_cubes();
+  io::write_mesh(kOut + "/cubes.mesh", m);
+  MeditMesh r = read_medit(kOut + "/cubes.mesh");
+  EXPECT_EQ(r.version, 2);
+  EXPECT_EQ(r.dimension, 3);
+  EXPECT_TRUE(r.end);
+  // Medit's tetrahedra have a positive volume in the usual sense, ours orient3d > 0.
+  for (const auto& t : r.mesh.tets) {
+    const auto& p = r.mesh.points;
+    const Point3 a = p[t[0]], b = p[t[1]], c = p[t[2]], d = p[t[3]];
+    const double ux = b.x - a.x, uy = b.y - a.y, uz = b.z - a.z;
+    const double vx = c.x - a.x, vy = c.y - a.y, vz = c.z - a.z;
+    const double wx = d.x - a.x, wy = d.y - a.y, wz = d.z - a.z;
+    EXPECT_GT((uy * vz - uz * vy) * wx + (uz * vx - ux * vz) * wy + (ux * vy - uy * vx) * wz, 0);
+  }
+  for (auto& t : r.mesh.tets) std::swap(t[0], t[1]);
+  for (int ref : r.triangle_ref) r.mesh.subface_facet.push_back(ref - 1);
+  r.mesh.tet_region = r.tet_ref;
+  expect_same_mesh(m, r.mesh);
+  for (std::size_t i = 0; i < m.points.size(); ++i)
+    EXPECT_EQ(r.vertex_ref[i], static_cast<int>(m.point_type[i]));
+  EXPECT_TRUE(validate_tetmesh(r.mesh, nullptr).valid);
+
+  // Without regions and facets: tetrahedra get 1, triangles 0.
+  TetMesh plain = m;
+  plain.tet_region.clear();
+  plain.subface_facet.clear();
+  io::write_medit(kOut + "/plain.mesh", plain);
+  const MeditMesh p = read_medit(kOut + "/plain.mesh");
+  EXPECT_EQ(p.tet_ref, std::vector<int>(12, 1));
+  EXPECT_EQ(p.triangle_ref, std::vector<int>(m.subfaces.size(), 0));
+}
+
+TEST(Write, TetVtuHasVtkOrientationAndRegions) {
+  const TetMesh m = two_cubes();
+  io::Attributes attr;
+  attr.cell_data.push_back({"Volume", 1, std::vector<double>(12, 0.1)});
+  io::write_mesh(kOut + "/cubes.vtu", m, attr);
+  std::ifstream in(kOut + "/cubes.vtu");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("type=\"Int32\" Name=\"Region\""), std::string::npos);
+  // read_vtk.py also checks that every tetrahedron has a positive volume in VTK's convention.
+  check_with_vtk(kOut + "/cubes.vtu", 12, 12, 10, "Volume PointType Region");
+}
+
+// Base64 streams of every length modulo 3 (header and data together) read back in VTK.
+TEST(Write, VtkBase64OfEveryLengthReadsBack) {
+  for (int n = 4; n <= 7; ++n) {
+    TetMesh m;
+    for (int i = 0; i < n; ++i)
+      m.points.push_back({0.1 * i, static_cast<double>(i % 2), static_cast<double>(i % 3)});
+    io::Attributes attr;
+    attr.point_data.push_back({"Id", 1, std::vector<double>(n, 1.0 / 3)});
+    const std::string path = kOut + "/points" + std::to_string(n) + ".vtu";
+    io::write_vtu(path, m, attr);
+    check_with_vtk(path, n, 0, 10, "Id");
+  }
 }
 
 TEST(Write, VtkXmlReadsBackInVtk) {

@@ -1,4 +1,5 @@
-"""Reads a .vtu/.vtp with VTK and checks its sizes and arrays.
+"""Reads a .vtu/.vtp with VTK and checks its sizes and arrays, and that tetrahedra have a
+positive volume in VTK's convention.
 
 usage: read_vtk.py FILE POINTS CELLS CELL_TYPE [ARRAY ...]
 Exit 0 on success, 1 on a mismatch, 77 when VTK is not importable.
@@ -23,6 +24,17 @@ if data.GetNumberOfCells() != cells:
 for i in range(data.GetNumberOfCells()):
     if data.GetCellType(i) != cell_type:
         errors.append("cell %d has type %d" % (i, data.GetCellType(i)))
+        break
+for i in range(data.GetNumberOfCells()):
+    cell = data.GetCell(i)
+    if cell.GetCellType() != 10:
+        continue
+    p = [cell.GetPoints().GetPoint(k) for k in range(4)]
+    u, v, w = ([p[k][j] - p[0][j] for j in range(3)] for k in (1, 2, 3))
+    volume = ((u[1] * v[2] - u[2] * v[1]) * w[0] + (u[2] * v[0] - u[0] * v[2]) * w[1]
+              + (u[0] * v[1] - u[1] * v[0]) * w[2])
+    if volume <= 0:
+        errors.append("tetrahedron %d has volume %r in VTK's orientation" % (i, volume / 6))
         break
 for name in sys.argv[5:]:
     if data.GetPointData().GetArray(name) is None and data.GetCellData().GetArray(name) is None:
