@@ -18,14 +18,25 @@ Pslg read_poly(const std::string& path);
 // into subsegment_source (-1 when absent).
 TriMesh read_triangle_mesh(const std::string& node_path, const std::string& ele_path);
 
-// TetGen .poly / .smesh: every facet polygon is triangulated by ear clipping in its plane
-// into Surface::triangles (2-corner polygons become Surface::segments). Facet holes and
-// volume holes are refused with an IoError. Surfaces as .off (faces of any size, ear
-// clipped) and .stl (ASCII or binary; exactly identical vertices merged).
+// Surfaces. Faces with more than three corners are ear clipped in their plane into
+// triangles of one facet: Surface::triangle_facet then holds each triangle's face (facet)
+// number, 0-based in file order; it stays empty when every face is a triangle.
+//
+// TetGen .poly / .smesh: every facet's polygons are triangulated into that facet
+// (2-corner polygons become Surface::segments); the volume hole list and the region list
+// ("x y z attribute [max volume]") fill Surface::holes and Surface::regions. Facet holes
+// are refused with an IoError.
 Surface read_tetgen_poly(const std::string& path);
 Surface read_off(const std::string& path);
-Surface read_stl(const std::string& path);   // ASCII or binary
-// Any of the surface formats above, by extension (.off, .stl, .poly, .smesh).
+Surface read_stl(const std::string& path);   // ASCII or binary; identical vertices merged
+// PLY, ASCII or binary (either byte order): vertex x, y, z of any numeric type, the face
+// list "vertex_indices" (or "vertex_index") of any integer types; other data skipped.
+Surface read_ply(const std::string& path);
+// Wavefront OBJ: "v" and "f" lines (corners "i", "i/t", "i//n", "i/t/n"; negative indices
+// count back from the last vertex read); everything else skipped.
+Surface read_obj(const std::string& path);
+// Any of the surface formats above, by extension, in any letter case (.off, .stl, .ply,
+// .obj, .poly, .smesh).
 Surface read_surface(const std::string& path);
 // The files read_surface(path) may read: `path`, and for a .poly or .smesh the .node beside
 // it (where a file whose point section is empty takes its points from).
@@ -38,7 +49,7 @@ std::vector<std::string> surface_input_files(const std::string& path);
 TetMesh read_tetgen_mesh(const std::string& node_path, const std::string& ele_path);
 
 // Reads any supported input by extension: .poly (2D Triangle or 3D TetGen by its header),
-// .node, .off, .stl, .smesh.
+// .node, .off, .stl, .ply, .obj, .smesh.
 enum class InputKind { Pslg2d, Surface3d };
 InputKind detect_input_kind(const std::string& path);
 

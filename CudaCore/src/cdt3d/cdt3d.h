@@ -51,17 +51,28 @@ struct CheckOptions {
 };
 
 // Checks `surface` and cleans it into a Plc. Throws Error(InvalidInput) for NaN/Inf
-// coordinates, fewer than four non-coplanar points, out-of-range or degenerate faces, open
-// boundaries (listing boundary edges) and non-manifold configurations, and
-// Error(SelfIntersectingInput) naming the first pairs of intersecting faces. Messages name
-// at most a few items plus a count, numbered as in the input. Merged duplicates go to
-// callbacks.warning.
+// coordinates, fewer than four non-coplanar points, out-of-range indices, degenerate
+// triangles (a repeated vertex, or collinear corners), open boundaries (edges of one
+// triangle, when options.require_closed), seeds lying on the surface, and input segments
+// that are not triangle edges; Error(SelfIntersectingInput) for triangles meeting other than
+// in a shared vertex or edge (exact; pairs of input triangle ids). Edges of three or more
+// triangles are legal (internal facets). Messages name at most five items plus a count,
+// numbered as in the input. Merged duplicates and ignored points go to callbacks.warning.
+//
+// Facets: triangles joined across edges of exactly two triangles that are exactly coplanar
+// and flat. Plc::facet_origin reports, per facet, the input facet id of its first triangle
+// (Surface::triangle_facet), or that triangle's input id when the input has no facet ids.
+// Segments: every edge whose triangles are not all in one facet, and the input segments.
 Plc check_surface(const Surface& surface, const CheckOptions& options = {},
                   const Callbacks& callbacks = {});
 
-// The constrained Delaunay tetrahedralization of `plc` (TetGen, boundary recovery with
-// Steiner points where needed), holes and exterior removed, region attributes assigned.
-// Throws Error(InvalidInput) when TetGen cannot recover the boundary.
+// The constrained Delaunay tetrahedralization of `plc` (TetGen -p: Steiner points on
+// segments and facets where recovery needs them), restricted to the domain cells (see Plc),
+// with tregion = the attribute of the cell's region seed (0 without one) when plc.regions is
+// not empty. Points: the PLC points first, in PLC order (input points that end up in no tet
+// stay, unreferenced), then TetGen's Steiner points in use, typed by what they lie on.
+// Subfaces: the faces on PLC facets between domain tets or on the domain boundary. The
+// PLC needs check_surface with require_closed. Throws Error(InvalidInput) when TetGen fails.
 m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks = {});
 
 }  // namespace gdr::cdt3d

@@ -1,4 +1,6 @@
-// 3D surface readers: TetGen .poly / .smesh / .node / .ele / .face, OFF and STL.
+// 3D surface readers: TetGen .poly / .smesh / .node / .ele / .face, OFF and STL (PLY and
+// OBJ in read_ply.cpp and read_obj.cpp).
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -6,6 +8,7 @@
 
 #include "gdr/error.h"
 #include "gdr/io.h"
+#include "io/face_collector.h"
 #include "io/text_file.h"
 
 namespace gdr::io {
@@ -18,14 +21,17 @@ std::vector<Point3> to_points3(const NodeList& nodes) {
   return points;
 }
 
-// One facet polygon: a point (ignored), a segment, or a polygon cut into triangles.
+// One facet polygon: a point (ignored), a segment, or a polygon cut into triangles of
+// facet `facet` (recorded per triangle in `facet_of`).
 void add_polygon(const TextFile& file, const std::vector<Point3>& points,
-                 const std::vector<int>& polygon, const std::string& what, Surface& surface) {
+                 const std::vector<int>& polygon, const std::string& what, int facet,
+                 Surface& surface, std::vector<int>& facet_of) {
   if (polygon.size() == 2) {
     surface.segments.push_back({polygon[0], polygon[1]});
   } else if (polygon.size() >= 3 && !triangulate_polygon(points, polygon, surface.triangles)) {
     file.fail(what + " cannot be triangulated (degenerate or not a simple planar polygon)");
   }
+  facet_of.resize(surface.triangles.size(), facet);
 }
 
 // "<#corners> c1 ... cn" at the start of `t`; returns the corners, 0-based.
@@ -49,29 +55,58 @@ Surface read_tetgen_poly(const std::string& path) {
   const NodeList nodes = read_poly_point_section(file, 3);
   Surface surface;
   surface.points = to_points3(nodes);
+  std::vector<int> facet_of;  // per triangle
+  bool multi = false;         // some facet has several triangles
   Tokens t;
   file.expect(t, 1, "the facet count header");
   const std::size_t facets = file.count(t[0], 2, "facet count");
   for (std::size_t f = 0; f < facets; ++f) {
     const std::string what = "facet " + std::to_string(f);
+    const std::size_t before = surface.triangles.size();
     if (smesh) {
       file.expect(t, 2, what);
-      add_polygon(file, surface.points, read_corners(file, t, nodes.first_index, nodes.size(), what), what, surface);
-      continue;
+      add_polygon(file, surface.points, read_corners(file, t, nodes.first_index, nodes.size(), what), what,
+                  static_cast<int>(f), surface, facet_of);
+    } else {
+      file.expect(t, 1, what);
+      const std::size_t polygons = file.count(t[0], 2, "polygon count of " + what);
+      const long long holes = t.size() > 1 ? file.integer(t[1], "hole count of " + what) : 0;
+      if (holes != 0) file.fail(what + " has holes, which are not supported (split the facet)");
+      for (std::size_t p = 0; p < polygons; ++p) {
+        const std::string pwhat = "polygon " + std::to_string(p) + " of " + what;
+        file.expect(t, 2, pwhat);
+        add_polygon(file, surface.points, read_corners(file, t, nodes.first_index, nodes.size(), pwhat), pwhat,
+                    static_cast<int>(f), surface, facet_of);
+      }
     }
-    file.expect(t, 1, what);
-    const std::size_t polygons = file.count(t[0], 2, "polygon count of " + what);
-    const long long holes = t.size() > 1 ? file.integer(t[1], "hole count of " + what) : 0;
-    if (holes != 0) file.fail(what + " has holes, which are not supported (split the facet)");
-    for (std::size_t p = 0; p < polygons; ++p) {
-      const std::string pwhat = "polygon " + std::to_string(p) + " of " + what;
-      file.expect(t, 2, pwhat);
-      add_polygon(file, surface.points, read_corners(file, t, nodes.first_index, nodes.size(), pwhat), pwhat, surface);
-    }
+    multi = multi || surface.triangles.size() > before + 1;
   }
-  // Volume holes cannot be represented by a Surface: refuse rather than mesh them.
-  if (file.next(t) && file.integer(t[0], "hole count") != 0)
-    file.fail("volume holes are not supported");
+  if (multi) surface.triangle_facet = facet_of;
+
+  // Volume holes: "<count>", then "<index> x y z" each.
+  if (!file.next(t)) return surface;
+  const std::size_t holes = file.count(t[0], 4, "hole count");
+  for (std::size_t h = 0; h < holes; ++h) {
+    const std::string what = "hole " + std::to_string(h);
+    file.expect(t, 4, what);
+    surface.holes.push_back({file.real(t[1], "x of " + what), file.real(t[2], "y of " + what),
+                             file.real(t[3], "z of " + what)});
+  }
+  // Regions: "<count>", then "<index> x y z attribute [max volume]" each.
+  if (!file.next(t)) return surface;
+  const std::size_t regions = file.count(t[0], 5, "region count");
+  for (std::size_t r = 0; r < regions; ++r) {
+    const std::string what = "region " + std::to_string(r);
+    file.expect(t, 5, what);
+    RegionSeed seed;
+    seed.point = {file.real(t[1], "x of " + what), file.real(t[2], "y of " + what), file.real(t[3], "z of " + what)};
+    const double attribute = file.real(t[4], "attribute of " + what);
+    if (attribute != std::floor(attribute) || std::fabs(attribute) > 2147483647.0)
+      file.fail("the attribute of " + what + " must be an integer, found " + std::string(t[4]));
+    seed.attribute = static_cast<int>(attribute);
+    if (t.size() > 5) seed.max_volume = std::max(0.0, file.real(t[5], "maximum volume of " + what));
+    surface.regions.push_back(seed);
+  }
   return surface;
 }
 
@@ -148,17 +183,16 @@ Surface read_off(const std::string& path) {
                               file.real(t[2], "z of " + what)});
   }
   surface.triangles.reserve(nf);
+  FaceCollector faces(surface);
   for (std::size_t i = 0; i < nf; ++i) {
     const std::string what = "face " + std::to_string(i);
     file.expect(t, 4, what);
     std::vector<int> corners = read_corners(file, t, 0, nv, what);
     if (corners.size() < 3) file.fail(what + " has fewer than 3 corners");
-    if (corners.size() == 3) {
-      surface.triangles.push_back({corners[0], corners[1], corners[2]});
-    } else {
-      add_polygon(file, surface.points, corners, what, surface);
-    }
+    if (!faces.add(corners, static_cast<int>(i)))
+      file.fail(what + " cannot be triangulated (degenerate or not a simple planar polygon)");
   }
+  faces.finish();
   return surface;
 }
 
@@ -276,9 +310,11 @@ Surface read_surface(const std::string& path) {
   const std::string ext = extension_of(path);
   if (ext == ".off") return read_off(path);
   if (ext == ".stl") return read_stl(path);
+  if (ext == ".ply") return read_ply(path);
+  if (ext == ".obj") return read_obj(path);
   if (ext == ".poly" || ext == ".smesh") return read_tetgen_poly(path);
   throw Error(Status::IoError, path + ": unsupported surface format '" + ext +
-                                   "' (expected .off, .stl, .poly or .smesh)");
+                                   "' (expected .off, .stl, .ply, .obj, .poly or .smesh)");
 }
 
 }  // namespace gdr::io

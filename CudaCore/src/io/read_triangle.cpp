@@ -90,10 +90,11 @@ TriMesh read_triangle_mesh(const std::string& node_path, const std::string& ele_
 InputKind detect_input_kind(const std::string& path) {
   const std::string ext = extension_of(path);
   if (ext == ".node") return InputKind::Pslg2d;
-  if (ext == ".off" || ext == ".stl" || ext == ".smesh") return InputKind::Surface3d;
+  if (ext == ".off" || ext == ".stl" || ext == ".ply" || ext == ".obj" || ext == ".smesh")
+    return InputKind::Surface3d;
   if (ext != ".poly")
     throw Error(Status::IoError, path + ": unsupported input format '" + ext +
-                                     "' (expected .poly, .node, .off, .stl or .smesh)");
+                                     "' (expected .poly, .node, .off, .stl, .ply, .obj or .smesh)");
   TextFile file(path);
   Tokens t;
   file.expect(t, 2, "the point count header");

@@ -294,7 +294,7 @@ TEST(CheckSurface, InternalFacetKeepsBothSides) {
   const Plc plc = check_surface(test::split_box());
   EXPECT_NEAR(plc.volume, 2.0, 1e-15);
   EXPECT_EQ(plc.facet_origin.size(), 11u);  // 10 boundary squares and the internal one
-  EXPECT_EQ(plc.segments.size(), 20u);      // 12 box edges + 4 around x = 1 + ... see below
+  EXPECT_EQ(plc.segments.size(), 20u);      // 16 box edges (split at x = 1) + 4 around x = 1
 }
 
 TEST(CheckSurface, SeedsDecideCells) {
