@@ -58,6 +58,7 @@ struct DataArray {
   std::string name;
   int components = 1;
   std::vector<double> values;  // size = components * count
+  bool float32 = false;        // written in single precision (half the bytes of a large file)
 };
 
 struct Attributes {

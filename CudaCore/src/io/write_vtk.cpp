@@ -77,6 +77,12 @@ void append_array(std::string& out, const char* type, const std::string& name, i
   out += "\n        </DataArray>\n";
 }
 
+void append_array(std::string& out, const DataArray& a) {
+  if (!a.float32) return append_array(out, "Float64", a.name, a.components, a.values);
+  append_array(out, "Float32", a.name, a.components,
+               std::vector<float>(a.values.begin(), a.values.end()));
+}
+
 void check_arrays(const std::vector<DataArray>& arrays, std::size_t count, const char* where) {
   for (const DataArray& a : arrays) {
     if (a.components < 1 || a.values.size() != static_cast<std::size_t>(a.components) * count)
@@ -90,7 +96,8 @@ void check_arrays(const std::vector<DataArray>& arrays, std::size_t count, const
 // Everything a VTK XML piece needs, gathered from either mesh type.
 struct Piece {
   std::vector<double> points;  // xyz
-  std::vector<std::int64_t> connectivity, offsets;
+  std::vector<std::int32_t> connectivity;  // vertex indices are ints
+  std::vector<std::int64_t> offsets;
   std::uint8_t cell_type = 0;
   int corners = 0;
   const std::vector<PointType>* point_type = nullptr;
@@ -124,9 +131,9 @@ std::string vtk_file(const Piece& piece, const Attributes& attributes, bool poly
   const char* type = polydata ? "PolyData" : "UnstructuredGrid";
   std::string out;
   // Base64 takes 4 characters per 3 bytes; XML tags take a few hundred in all.
-  std::size_t bytes = 8 * piece.points.size() + np + 8 * (piece.connectivity.size() + nc) + 5 * nc;
-  for (const DataArray& a : attributes.point_data) bytes += 8 * a.values.size();
-  for (const DataArray& a : attributes.cell_data) bytes += 8 * a.values.size();
+  std::size_t bytes = 8 * piece.points.size() + np + 4 * piece.connectivity.size() + 13 * nc;
+  for (const auto* arrays : {&attributes.point_data, &attributes.cell_data})
+    for (const DataArray& a : *arrays) bytes += (a.float32 ? 4 : 8) * a.values.size();
   out.reserve(bytes / 3 * 4 + 4096);
   out += "<?xml version=\"1.0\"?>\n<VTKFile type=\"";
   out += type;
@@ -136,23 +143,21 @@ std::string vtk_file(const Piece& piece, const Attributes& attributes, bool poly
   out += polydata ? "NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\""
                   : "NumberOfCells=\"";
   out += std::to_string(nc) + "\">\n      <PointData>\n";
-  for (const DataArray& a : attributes.point_data)
-    append_array(out, "Float64", a.name, a.components, a.values);
+  for (const DataArray& a : attributes.point_data) append_array(out, a);
   if (piece.point_type && !piece.point_type->empty()) {
     std::vector<std::uint8_t> pt(np);
     std::memcpy(pt.data(), piece.point_type->data(), np);
     append_array(out, "UInt8", "PointType", 1, pt);
   }
   out += "      </PointData>\n      <CellData>\n";
-  for (const DataArray& a : attributes.cell_data)
-    append_array(out, "Float64", a.name, a.components, a.values);
+  for (const DataArray& a : attributes.cell_data) append_array(out, a);
   if (region) append_array(out, "Int32", "Region", 1, *piece.region);
   out += "      </CellData>\n      <Points>\n";
   append_array(out, "Float64", "Points", 3, piece.points);
   out += "      </Points>\n      <";
   out += polydata ? "Polys" : "Cells";
   out += ">\n";
-  append_array(out, "Int64", "connectivity", 1, piece.connectivity);
+  append_array(out, "Int32", "connectivity", 1, piece.connectivity);
   append_array(out, "Int64", "offsets", 1, piece.offsets);
   if (!polydata) append_array(out, "UInt8", "types", 1, std::vector<std::uint8_t>(nc, piece.cell_type));
   out += "      </";

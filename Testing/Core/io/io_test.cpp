@@ -512,12 +512,14 @@ TEST(Write, TetVtuHasVtkOrientationAndRegions) {
   const TetMesh m = two_cubes();
   io::Attributes attr;
   attr.cell_data.push_back({"Volume", 1, std::vector<double>(12, 0.1)});
+  attr.cell_data.push_back({"MinDihedralAngle", 1, std::vector<double>(12, 35.26), true});
   io::write_mesh(kOut + "/cubes.vtu", m, attr);
   std::ifstream in(kOut + "/cubes.vtu");
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("type=\"Int32\" Name=\"Region\""), std::string::npos);
+  EXPECT_NE(text.find("type=\"Float32\" Name=\"MinDihedralAngle\""), std::string::npos);
   // read_vtk.py also checks that every tetrahedron has a positive volume in VTK's convention.
-  check_with_vtk(kOut + "/cubes.vtu", 12, 12, 10, "Volume PointType Region");
+  check_with_vtk(kOut + "/cubes.vtu", 12, 12, 10, "Volume MinDihedralAngle PointType Region");
 }
 
 // Base64 streams of every length modulo 3 (header and data together) read back in VTK.
