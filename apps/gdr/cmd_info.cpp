@@ -27,7 +27,8 @@ Prints the kind of input (2D planar straight-line graph or 3D surface), its coun
 bounding box. For a 2D input it also says whether 'gdr 2d' accepts it as it is (crossing
 segments, duplicate points and other problems are named).
 
-Supported inputs: Triangle .poly/.node (2D), TetGen .poly/.smesh, .off, .stl (3D surfaces).
+Supported inputs: Triangle .poly/.node (2D), TetGen .poly/.smesh, .off, .stl, .ply, .obj
+(3D surfaces).
 
 Example:
   gdr info shape.poly
@@ -97,10 +98,7 @@ int run_info(const std::vector<std::string>& args) {
     }
     tab.row({"mesher input check", verdict});
   } else {
-    const std::string ext = std::filesystem::path(path).extension().string();
-    const Surface s = ext == ".off"   ? io::read_off(path)
-                      : ext == ".stl" ? io::read_stl(path)
-                                      : io::read_tetgen_poly(path);
+    const Surface s = io::read_surface(path);
     tab.row({"kind", "3D surface (piecewise linear complex)"});
     tab.row({"points", with_commas(static_cast<long long>(s.points.size()))});
     tab.row({"triangles", with_commas(static_cast<long long>(s.triangles.size()))});
