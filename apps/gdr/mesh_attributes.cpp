@@ -33,4 +33,19 @@ io::Attributes triangle_attributes(const TriMesh& mesh, double min_angle_deg) {
   return attributes;
 }
 
+io::Attributes tet_attributes(const QualityTetResult& r) {
+  io::Attributes attributes;
+  // Written in the precision the mesher measured them in: single, but volumes in double.
+  auto add = [&attributes](const char* name, const auto& values, bool float32) {
+    attributes.cell_data.push_back(
+        {name, 1, std::vector<double>(values.begin(), values.end()), float32});
+  };
+  add("RadiusEdgeRatio", r.radius_edge, true);
+  add("MinDihedralAngle", r.min_dihedral, true);
+  add("MaxDihedralAngle", r.max_dihedral, true);
+  add("Volume", r.volume, false);
+  add("IsBad", r.is_bad, true);
+  return attributes;
+}
+
 }  // namespace gdr::cli
