@@ -67,10 +67,10 @@ inline bool segments_meet_2d(int axis, const Point3& p, const Point3& q, const P
   return !lex_less(axis, hi1, lo2) && !lex_less(axis, hi2, lo1);
 }
 
-// Closed segment pq meets closed triangle abc (abc not degenerate).
+// Closed segment pq meets closed triangle abc (abc not degenerate), given op and oq, the
+// signs of orient3d(a, b, c, p) and orient3d(a, b, c, q).
 inline bool segment_meets_triangle(const Point3& p, const Point3& q, const Point3& a,
-                                   const Point3& b, const Point3& c) {
-  const int op = orient3d(a, b, c, p), oq = orient3d(a, b, c, q);
+                                   const Point3& b, const Point3& c, int op, int oq) {
   if (op * oq > 0) return false;
   if (op == 0 && oq == 0) {  // coplanar: a 2D question
     const int axis = projection_axis(a, b, c);
@@ -85,6 +85,11 @@ inline bool segment_meets_triangle(const Point3& p, const Point3& q, const Point
   return !(pos && neg);
 }
 
+inline bool segment_meets_triangle(const Point3& p, const Point3& q, const Point3& a,
+                                   const Point3& b, const Point3& c) {
+  return segment_meets_triangle(p, q, a, b, c, orient3d(a, b, c, p), orient3d(a, b, c, q));
+}
+
 // x (in the plane of a, d, e) lies in the closed cone at a spanned by d and e.
 inline bool in_cone(int axis, const Point3& a, const Point3& d, const Point3& e, const Point3& x) {
   const int s = orient2d(axis, a, d, e);
@@ -92,66 +97,65 @@ inline bool in_cone(int axis, const Point3& a, const Point3& d, const Point3& e,
 }
 
 // Triangles t1 and t2 (vertex ids into pts, each non-degenerate, not the same vertex set)
-// meet anywhere other than in what they share: a common vertex or a common edge.
+// meet anywhere other than in what they share: a common vertex or a common edge. Each
+// plane orientation is evaluated once: on flat (coplanar) input they take the exact stage.
 inline bool triangles_clash(const std::vector<Point3>& pts, std::array<int, 3> t1,
                             std::array<int, 3> t2) {
   int shared = 0;
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) shared += t1[i] == t2[j];
   auto P = [&](int v) -> const Point3& { return pts[v]; };
-  // All corners of one strictly on one side of the other's plane: they can meet at most in
-  // what they share, which is allowed.
-  auto one_side = [&](const std::array<int, 3>& t, const std::array<int, 3>& u) {
-    int pos = 0, neg = 0;
-    for (int v : u) {
-      if (v == t[0] || v == t[1] || v == t[2]) continue;
-      const int o = orient3d(P(t[0]), P(t[1]), P(t[2]), P(v));
-      if (o == 0) return false;
-      (o > 0 ? pos : neg) = 1;
-    }
-    return !(pos && neg);
-  };
-  if (shared < 2 && (one_side(t1, t2) || one_side(t2, t1))) return false;
-  if (shared == 0) {
-    for (int k = 0; k < 3; ++k) {
-      if (segment_meets_triangle(P(t1[k]), P(t1[(k + 1) % 3]), P(t2[0]), P(t2[1]), P(t2[2])))
-        return true;
-      if (segment_meets_triangle(P(t2[k]), P(t2[(k + 1) % 3]), P(t1[0]), P(t1[1]), P(t1[2])))
-        return true;
-    }
-    return false;
-  }
-  // Rotate t1 so that its shared vertices come first, and t2 to start with the same ones.
   auto in = [](const std::array<int, 3>& t, int v) { return t[0] == v || t[1] == v || t[2] == v; };
-  while (!in(t2, t1[0]) || (shared == 2 && !in(t2, t1[1]))) std::rotate(t1.begin(), t1.begin() + 1, t1.end());
-  while (t2[0] != t1[0]) std::rotate(t2.begin(), t2.begin() + 1, t2.end());
+  // Rotate t1 so that its shared vertices come first, and t2 to start with the same ones.
+  if (shared > 0) {
+    while (!in(t2, t1[0]) || (shared == 2 && !in(t2, t1[1]))) std::rotate(t1.begin(), t1.begin() + 1, t1.end());
+    while (t2[0] != t1[0]) std::rotate(t2.begin(), t2.begin() + 1, t2.end());
+  }
+  const Point3 &a = P(t1[0]), &b = P(t1[1]), &c = P(t1[2]);
   if (shared == 2) {
     // t1 = (a, b, c), t2 holds a, b and apex d. They overlap only if coplanar with c and d
     // on the same side of ab.
-    const int d = t2[1] == t1[1] ? t2[2] : t2[1];
-    const Point3 &a = P(t1[0]), &b = P(t1[1]), &c = P(t1[2]), &dd = P(d);
-    if (orient3d(a, b, c, dd) != 0) return false;
+    const Point3& d = P(t2[1] == t1[1] ? t2[2] : t2[1]);
+    if (orient3d(a, b, c, d) != 0) return false;
     const int axis = projection_axis(a, b, c);
-    return orient2d(axis, a, b, c) == orient2d(axis, a, b, dd);
+    return orient2d(axis, a, b, c) == orient2d(axis, a, b, d);
   }
-  // One shared vertex a: t1 = (a, b, c), t2 = (a, d, e).
-  const Point3 &a = P(t1[0]), &b = P(t1[1]), &c = P(t1[2]), &d = P(t2[1]), &e = P(t2[2]);
-  const int ax1 = projection_axis(a, b, c), ax2 = projection_axis(a, d, e);
-  const bool d_on1 = orient3d(a, b, c, d) == 0, e_on1 = orient3d(a, b, c, e) == 0;
-  if (d_on1 && e_on1) {
-    // Coplanar: near a the triangles are their angles at a; they overlap beyond a iff
-    // an edge ray of one lies in the other's closed angle.
-    return in_cone(ax1, a, d, e, b) || in_cone(ax1, a, d, e, c) || in_cone(ax1, a, b, c, d) ||
-           in_cone(ax1, a, b, c, e);
+  const Point3 &d = P(t2[1]), &e = P(t2[2]);
+  if (shared == 1) {
+    // t1 = (a, b, c), t2 = (a, d, e). Both other corners of one strictly on one side of the
+    // other's plane: they meet only in a.
+    const int d1 = orient3d(a, b, c, d), e1 = orient3d(a, b, c, e);
+    if (d1 * e1 > 0) return false;
+    const int ax1 = projection_axis(a, b, c);
+    if (d1 == 0 && e1 == 0) {
+      // Coplanar: near a the triangles are their angles at a; they overlap beyond a iff
+      // an edge ray of one lies in the other's closed angle.
+      return in_cone(ax1, a, d, e, b) || in_cone(ax1, a, d, e, c) || in_cone(ax1, a, b, c, d) ||
+             in_cone(ax1, a, b, c, e);
+    }
+    const int b2 = orient3d(a, d, e, b), c2 = orient3d(a, d, e, c);
+    if (b2 * c2 > 0) return false;
+    // The intersection lies on the line where the planes meet and starts at a: it is more
+    // than a iff its far end is on an opposite edge, or on an edge at a lying in the other
+    // triangle's plane.
+    if (segment_meets_triangle(b, c, a, d, e, b2, c2) || segment_meets_triangle(d, e, a, b, c, d1, e1)) return true;
+    const int ax2 = projection_axis(a, d, e);
+    return (b2 == 0 && in_cone(ax2, a, d, e, b)) || (c2 == 0 && in_cone(ax2, a, d, e, c)) ||
+           (d1 == 0 && in_cone(ax1, a, b, c, d)) || (e1 == 0 && in_cone(ax1, a, b, c, e));
   }
-  // Otherwise the intersection lies on the line where the planes meet, and starts at a: it
-  // is more than a iff its far end is on an opposite edge or on an edge at a lying in the
-  // other triangle's plane.
-  if (segment_meets_triangle(b, c, a, d, e) || segment_meets_triangle(d, e, a, b, c)) return true;
-  if (orient3d(a, d, e, b) == 0 && in_cone(ax2, a, d, e, b)) return true;
-  if (orient3d(a, d, e, c) == 0 && in_cone(ax2, a, d, e, c)) return true;
-  if (d_on1 && in_cone(ax1, a, b, c, d)) return true;
-  if (e_on1 && in_cone(ax1, a, b, c, e)) return true;
+  // Nothing shared: any contact is a clash.
+  const Point3& f = P(t2[0]);
+  const int o1[3] = {orient3d(a, b, c, f), orient3d(a, b, c, d), orient3d(a, b, c, e)};
+  if ((o1[0] > 0 && o1[1] > 0 && o1[2] > 0) || (o1[0] < 0 && o1[1] < 0 && o1[2] < 0)) return false;
+  const int o2[3] = {orient3d(f, d, e, a), orient3d(f, d, e, b), orient3d(f, d, e, c)};
+  if ((o2[0] > 0 && o2[1] > 0 && o2[2] > 0) || (o2[0] < 0 && o2[1] < 0 && o2[2] < 0)) return false;
+  const Point3* v1[3] = {&a, &b, &c};
+  const Point3* v2[3] = {&f, &d, &e};
+  for (int k = 0; k < 3; ++k) {
+    const int k1 = (k + 1) % 3;
+    if (segment_meets_triangle(*v1[k], *v1[k1], f, d, e, o2[k], o2[k1])) return true;
+    if (segment_meets_triangle(*v2[k], *v2[k1], a, b, c, o1[k], o1[k1])) return true;
+  }
   return false;
 }
 
