@@ -89,17 +89,17 @@ Surface plc_surface(const Plc& plc) {
   return s;
 }
 
-// initial_cdt with every check: links, positive tets, volume, validators.
-m3d::HostTetMesh checked_cdt(const Plc& plc, bool expect_delaunay = true) {
+// initial_cdt with every check: links, positive tets, volume, validators (`validate`: off
+// where the domain's boundary is not a manifold, which validate_tetmesh does not accept).
+m3d::HostTetMesh checked_cdt(const Plc& plc, bool validate = true) {
   m3d::HostTetMesh m = initial_cdt(plc);
   EXPECT_NO_THROW(m3d::check_host_mesh(m));
   for (int t = 0; t < m.tets(); ++t) EXPECT_GT(tet_volume(m, t), 0) << "tet " << t;
   EXPECT_NEAR(mesh_volume(m), plc.volume, 1e-12 * std::max(1.0, std::fabs(plc.volume)));
   EXPECT_EQ(m.segments(), static_cast<int>(plc.segments.size()));
+  if (!validate) return m;
   const Surface s = plc_surface(plc);
-  ValidateOptions vo;
-  vo.check_delaunay = expect_delaunay;
-  const ValidationReport r = validate_tetmesh(to_tetmesh(m), &s, vo);
+  const ValidationReport r = validate_tetmesh(to_tetmesh(m), &s);
   EXPECT_TRUE(r.valid) << r.summary();
   return m;
 }
@@ -343,6 +343,24 @@ TEST(InitialCdt, TwoDisjointCubes) {
   add_box(s, {3, 0, 0}, {4, 1, 1});
   const m3d::HostTetMesh m = checked_cdt(check_surface(s));
   EXPECT_NEAR(mesh_volume(m), 2.0, 1e-14);
+}
+
+TEST(InitialCdt, CubesTouchingAtAnEdgeOrAVertex) {
+  Surface edge = unit_cube();
+  add_box(edge, {1, 0, 1}, {2, 1, 2});  // the edge x = 1, z = 1 has four triangles
+  EXPECT_NEAR(mesh_volume(checked_cdt(check_surface(edge), false)), 2.0, 1e-14);
+  Surface vertex = unit_cube();
+  add_box(vertex, {1, 1, 1}, {2, 2, 2});
+  EXPECT_NEAR(mesh_volume(checked_cdt(check_surface(vertex))), 2.0, 1e-14);
+  // A tetrahedral cavity touching the outer surface at the corner (0, 0, 0).
+  Surface cavity = unit_cube();
+  const int n = static_cast<int>(cavity.points.size());
+  cavity.points.insert(cavity.points.end(), {{0.5, 0.375, 0.25}, {0.25, 0.5, 0.375}, {0.375, 0.25, 0.5}});
+  cavity.triangles.insert(cavity.triangles.end(),
+                          {{0, n, n + 1}, {0, n + 1, n + 2}, {0, n + 2, n}, {n, n + 2, n + 1}});
+  const Plc plc = check_surface(cavity);
+  EXPECT_LT(plc.volume, 1.0);
+  EXPECT_NEAR(mesh_volume(checked_cdt(plc)), plc.volume, 1e-14);
 }
 
 TEST(InitialCdt, BoxSplitByAnInternalFacetIntoTwoRegions) {
