@@ -1,30 +1,37 @@
 #!/usr/bin/env bash
 # One call on the GPU machine (H100, no network): core tests on the GPU, then a benchmark tier.
 # Run from the repository root, with .device carried (made by scripts/package_device.sh):
-#   scripts/device_run.sh [quick|full|xl|CASES.txt] [--no-tests] [--tests-only]
+#   scripts/device_run.sh [TIER|CASES.txt] [--no-tests] [--tests-only] [--only SUBSTRING]
+# TIER names Benchmarks/cases_TIER.txt: quick, full, xl, large, cgal10M, ablation, crossover,
+# 3d_quick, 3d_large, 3d_crossover. --only runs the cases whose name contains SUBSTRING.
 # Primary path: the programs prebuilt here (.device/bin, .device/tests). If .device/bin has no
 # gdr_bench, the core, its tests and gdr_bench are built there with CUDA (no CGAL, no VTK),
 # GoogleTest from .device/googletest; the CPU baselines always come prebuilt from .device/bin.
+# The anchors (Triangle, the authors' gDP2d and gQM3d) come packed in .device/anchors.tar.gz
+# and are unpacked into .device/bin.
 # Results go to $OUT (the device tool brings back up to 8 files): device_run.log, tests.log,
-# bench.csv, bench.md. The benchmark table is printed last.
+# bench.csv, bench.md, histograms.csv (3D dihedral angles). The benchmark table is printed last.
 # Environment: GDR_TEST_TIMEOUT (s per test program, default 240), GDR_CALL_BUDGET (s the
 # whole script may take, default 570: the device tool stops a call at 600), GDR_BUILD_JOBS.
 set -uo pipefail
 
 root=$(pwd)
-tier=quick run_tests=1 run_bench=1
-for a in "$@"; do
-  case $a in
+tier=quick run_tests=1 run_bench=1 only=()
+while (( $# )); do
+  case $1 in
     --no-tests) run_tests=0 ;;
     --tests-only) run_bench=0 ;;
-    -h|--help) sed -n '2,13p' "$0"; exit 0 ;;
-    *) tier=$a ;;
+    --only) only=(--only "${2:?--only needs a substring}"); shift ;;
+    -h|--help) sed -n '2,15p' "$0"; exit 0 ;;
+    *) tier=$1 ;;
   esac
+  shift
 done
-case $tier in
-  quick|full|xl) cases=$root/Benchmarks/cases_$tier.txt ;;
-  *) cases=$tier ;;
-esac
+if [[ -f $root/Benchmarks/cases_$tier.txt ]]; then
+  cases=$root/Benchmarks/cases_$tier.txt
+else
+  cases=$tier
+fi
 out=${OUT:-$root/bench-out}
 mkdir -p "$out"
 dev=$root/.device
@@ -66,6 +73,10 @@ main() {
   [[ -f $dev/manifest.txt ]] && sed 's/^/  package: /' "$dev/manifest.txt"
 
   local bench bin_dir=$dev/bin tests=() built_here=0
+  if [[ -f $dev/anchors.tar.gz && ! -x $dev/bin/gqm3d ]]; then
+    mkdir -p "$dev/bin" && tar -C "$dev/bin" -xzf "$dev/anchors.tar.gz" &&
+      echo "anchors: $(tar -tzf "$dev/anchors.tar.gz" | sed -n 's|^\./||p' | tr '\n' ' ')"
+  fi
   if [[ -x $dev/bin/gdr_bench ]]; then
     bench=$dev/bin/gdr_bench
     tests=("$dev"/tests/*)
@@ -114,7 +125,7 @@ main() {
     (( left < 30 )) && left=30
     echo "== benchmark: $cases (at most ${left} s)"
     with_libs timeout -k 5 "$left" "$bench" "$cases" --out-dir "$out" \
-      --data-dir "$dev/data" --bin-dir "$bin_dir" 2>&1 || {
+      --data-dir "$dev/data" --bin-dir "$bin_dir" ${only[@]+"${only[@]}"} 2>&1 || {
         echo "gdr_bench stopped early (rc $?); the cases it finished:"
         cat "$out/bench.md" 2>/dev/null
         failed=1

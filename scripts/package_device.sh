@@ -6,7 +6,11 @@
 #   1. builds the core, its tests, gdr_bench and the baselines here (CUDA arch 90) unless
 #      --no-build is given (then it packages what build-bench already holds);
 #   2. copies the programs (bin/), the test programs (tests/) and every shared library they
-#      need that is not part of glibc or the NVIDIA driver (lib/);
+#      need that is not part of glibc or the NVIDIA driver (lib/), TetGen's libtet.so.1.5
+#      among them (Debian has no static libtet), and checks with ldd that each resolves
+#      from lib/;
+#   2b. packs the anchors (../shared/anchors/bin: Triangle, the authors' gDP2d and gQM3d) into
+#      anchors.tar.gz (24 MB of programs, ~9 MB packed); device_run.sh unpacks them into bin/;
 #   3. copies the data set (data/) and GoogleTest's sources (googletest/, for building there);
 #   4. writes manifest.txt (the absolute source path the test programs were compiled with).
 # Environment: GDR_BENCH_BUILD (build dir, default build-bench), GDR_BUILD_JOBS (default 2).
@@ -54,6 +58,33 @@ done | sort -u | while read -r lib; do
   esac
 done
 strip --strip-unneeded "$dest"/lib/* 2>/dev/null || true
+
+# Every library our programs need must come from lib/ or be glibc's or the driver's: the GPU
+# machine has no TetGen, CGAL, GMP, TBB.
+bad=0
+for exe in "$dest"/bin/* "$dest"/tests/*; do
+  while read -r name arrow path _; do
+    [[ $arrow == "=>" ]] || continue
+    case $name in
+      libc.so*|libm.so*|libpthread.so*|libdl.so*|librt.so*|ld-linux*|libresolv.so*|libcuda.so*|libnvidia*) continue ;;
+    esac
+    if [[ $path != "$dest/lib/"* ]]; then
+      echo "$(basename "$exe"): $name resolves to '$path', not to .device/lib" >&2
+      bad=1
+    fi
+  done < <(LD_LIBRARY_PATH="$dest/lib" ldd "$exe")
+done
+(( bad == 0 )) || { echo "package_device.sh: libraries missing from .device/lib" >&2; exit 1; }
+echo "ldd: every library of bin/ and tests/ resolves from .device/lib (or glibc, the driver)"
+
+# The anchors: packed, they leave room for the rest within the 64 MiB the device tool carries.
+anchors=$root/../shared/anchors/bin
+if [[ -d $anchors ]]; then
+  tar -C "$anchors" -czf "$dest/anchors.tar.gz" .
+  echo "anchors packed: $(cd "$anchors" && echo *)"
+else
+  echo "no anchors at $anchors: triangle, gdp2d and gqm3d cases will report skipped" >&2
+fi
 
 data=$root/../shared/data
 [[ -d $data ]] && cp -r "$data" "$dest/data" && chmod -R u+w "$dest/data"

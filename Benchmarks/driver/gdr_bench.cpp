@@ -1,7 +1,9 @@
-// gdr_bench: runs a case file of (input, bounds, runner) lines. Our engine runs in-process
-// through gdr::refine_2d (which returns after the device has synchronised) and its output is
-// checked by gdr::validate_trimesh; baselines run as child processes printing one JSON line.
-// Writes bench.csv and bench.md and prints the Markdown table last.
+// gdr_bench: runs a case file of (input, bounds, runner) lines. Our engines run in-process
+// through gdr::refine_2d and gdr::quality_tet_mesh (both return after the device has
+// synchronised) and their outputs are checked by gdr::validate_trimesh / validate_tetmesh;
+// baselines run as child processes printing one JSON line, anchors (Triangle, gDP2d, gQM3d)
+// as child processes read back by anchors.cpp. Writes bench.csv, bench.md and
+// histograms.csv (3D dihedral angles) and prints the Markdown tables last.
 #include <unistd.h>
 
 #include <algorithm>
@@ -27,46 +29,6 @@ namespace fs = std::filesystem;
 using namespace gdr_bench;
 
 namespace {
-
-struct Settings {
-  std::string data_dir = GDR_BENCH_DATA_DIR;
-  std::string bin_dir;
-  std::string work_dir;
-  std::string out_dir = ".";
-  std::string only;
-};
-
-// Inputs are loaded or generated once and shared by every runner of every case using them.
-class Inputs {
- public:
-  explicit Inputs(const Settings& s) : s_(s) {}
-
-  std::string path(const std::string& input) {
-    if (is_generator_spec(input)) {
-      auto it = written_.find(input);
-      if (it != written_.end()) return it->second;
-      std::string file = input;
-      std::replace_if(file.begin(), file.end(), [](char c) { return !std::isalnum(c); }, '_');
-      file = (fs::path(s_.work_dir) / (file + ".poly")).string();
-      write_poly(file, pslg(input));
-      return written_[input] = file;
-    }
-    if (fs::path(input).is_absolute() || fs::exists(input)) return input;
-    return (fs::path(s_.data_dir) / input).string();
-  }
-
-  const gdr::Pslg& pslg(const std::string& input) {
-    auto it = pslgs_.find(input);
-    if (it != pslgs_.end()) return it->second;
-    gdr::Pslg p = is_generator_spec(input) ? generate_pslg(input) : gdr::io::read_poly(path(input));
-    return pslgs_.emplace(input, std::move(p)).first->second;
-  }
-
- private:
-  const Settings& s_;
-  std::map<std::string, gdr::Pslg> pslgs_;
-  std::map<std::string, std::string> written_;
-};
 
 std::string utc_now() {
   char b[32];
@@ -143,12 +105,6 @@ bool warm_up_gpu(std::string& why_not) {
   }
 }
 
-std::string number_arg(double v) {
-  std::ostringstream s;
-  s.precision(17);
-  s << v;
-  return s.str();
-}
 
 Result run_gdr(const Case& c, Inputs& inputs, double max_edge, bool validate) {
   Result r;
@@ -221,7 +177,8 @@ Result run_gdr(const Case& c, Inputs& inputs, double max_edge, bool validate) {
   return r;
 }
 
-Result run_baseline(const Case& c, Inputs& inputs, const Settings& s, double max_edge) {
+Result run_baseline(const Case& c, Inputs& inputs, const Settings& s, double max_edge,
+                    const TetBounds& bounds) {
   std::vector<std::string> argv;
   auto exe = [&](const char* name) { return (fs::path(s.bin_dir) / name).string(); };
   if (c.runner == "cgal-mesh2") {
@@ -230,7 +187,9 @@ Result run_baseline(const Case& c, Inputs& inputs, const Settings& s, double max
             "--max-edge", number_arg(max_edge),
             "--domain", c.text("exterior", "keep") == "remove" ? "enclosed" : "hull"};
   } else if (c.runner == "tetgen") {
-    argv = {exe("bench_tetgen"), inputs.path(c.input), c.text("switches", "pq1.4")};
+    // B goes along for the checker: the share of tets above it, as for our meshes.
+    argv = {exe("bench_tetgen"), inputs.path(c.input), tetgen_switches(c, bounds), "--radius-edge",
+            number_arg(bounds.radius_edge)};
   } else {
     argv = {exe("bench_cgal_mesh3"), inputs.path(c.input)};
     if (c.runner == "cgal-mesh3-par") {
@@ -289,12 +248,22 @@ Result run_baseline(const Case& c, Inputs& inputs, const Settings& s, double max
     r.refine_s = num("refine_seconds");
     r.total_s = num("total_seconds");
     r.min_quality_deg = j.count("min_angle_deg") ? num("min_angle_deg") : num("min_dihedral_deg");
-    r.bad_area_pct = num("bad_area_percent");
+    r.bad_area_pct = j.count("bad_volume_percent") ? num("bad_volume_percent") : num("bad_area_percent");
+    r.bad_elements = count("bad_tets");
+    r.bad_elements_pct = num("bad_tets_percent");
+    r.max_radius_edge = num("max_radius_edge");
+    if (j.count("dihedral_histogram")) {
+      std::istringstream bins(j.at("dihedral_histogram"));
+      for (long long n; bins >> n;) r.histogram.push_back(n);
+    }
+    if (j.count("switches")) r.message += "switches " + j.at("switches") + ". ";
     if (j.count("threads")) r.message = "threads=" + j.at("threads") + ". ";
     runs.push_back(r);
   }
   std::sort(runs.begin(), runs.end(), [](const Result& a, const Result& b) { return a.total_s < b.total_s; });
   Result r = runs[runs.size() / 2];
+  if (c.runner == "tetgen")
+    r.message += "CDT: a TetGen run with the quality and volume switches left out; refine = total - CDT. ";
   if (repeat > 1) r.message += "median of " + std::to_string(repeat) + " runs. ";
   return r;
 }
@@ -309,19 +278,28 @@ void usage() {
          "  --data-dir: base of relative input paths (default ../shared/data of the source tree)\n"
          "  --bin-dir: where the baseline programs are (default: beside gdr_bench)\n"
          "  --only: run only cases whose name contains SUBSTRING\n"
-         "  SPEC: gen:contours:segments=N:seed=S[:amplitude=A]\n";
+         "  SPEC: gen:contours:segments=N:seed=S[:amplitude=A] (2D, writes .poly)\n"
+         "        gen:surface:base=FILE:subdiv=K, gen:torus:triangles=N[:bump=A] (3D, writes .off)\n";
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   Settings s;
+  s.data_dir = GDR_BENCH_DATA_DIR;
   std::string cases_path;
   try {
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
       const bool has_value = i + 1 < argc;
       if (a == "--generate" && i + 2 < argc) {
+        if (is_surface_spec(argv[i + 1])) {
+          const gdr::Surface surface = generate_surface(argv[i + 1], s.data_dir);
+          write_off(argv[i + 2], surface);
+          std::printf("%s: %zu points, %zu triangles, enclosed volume %.9g\n", argv[i + 2],
+                      surface.points.size(), surface.triangles.size(), enclosed_volume(surface));
+          return 0;
+        }
         const gdr::Pslg p = generate_pslg(argv[i + 1]);
         write_poly(argv[i + 2], p);
         std::printf("%s: %zu points, %zu segments\n", argv[i + 2], p.points.size(), p.segments.size());
@@ -358,8 +336,8 @@ int main(int argc, char** argv) {
 
     Inputs inputs(s);
     std::vector<Result> results;
-    int gpu_state = 0;  // 0 not tried, 1 ready, -1 unusable
-    std::string gpu_problem;
+    int gpu_state = 0, gpu3d_state = 0;  // 0 not tried, 1 ready, -1 unusable
+    std::string gpu_problem, gpu3d_problem;
     for (std::size_t i = 0; i < cases.size(); ++i) {
       const Case& c = cases[i];
       std::fprintf(stderr, "[%zu/%zu] %s %s ...\n", i + 1, cases.size(), c.name.c_str(), c.runner.c_str());
@@ -368,19 +346,39 @@ int main(int argc, char** argv) {
         double max_edge = c.number("max_edge", 0.0);
         if (is_2d_runner(c.runner) && c.number("target_points", 0) > 0)
           max_edge = edge_for_points(inputs.pslg(c.input), c.number("target_points", 0));
+        const bool bounded_3d = is_gdr_tet_runner(c.runner) || c.runner == "tetgen" || c.runner == "gqm3d";
+        const TetBounds bounds = bounded_3d ? tet_bounds(c, inputs) : TetBounds{};
         if (c.runner == "gdr-gpu" && gpu_state == 0) gpu_state = warm_up_gpu(gpu_problem) ? 1 : -1;
+        if (c.runner == "gdr-tet-gpu" && gpu3d_state == 0)
+          gpu3d_state = warm_up_gpu_3d(gpu3d_problem) ? 1 : -1;
         if (c.runner == "gdr-gpu" && gpu_state < 0) {
           r.status = "skipped";
           r.message = gpu_problem;
+        } else if (c.runner == "gdr-tet-gpu" && gpu3d_state < 0) {
+          r.status = "skipped";
+          r.message = gpu3d_problem;
         } else if (is_gdr_runner(c.runner)) {
           r = run_gdr(c, inputs, max_edge, c.number("validate", 1) != 0);
+        } else if (is_gdr_tet_runner(c.runner)) {
+          r = run_gdr_tet(c, inputs, bounds, c.number("validate", 1) != 0);
+        } else if (c.runner == "triangle") {
+          r = run_triangle(c, inputs, s, max_edge);
+        } else if (c.runner == "gdp2d") {
+          r = run_gdp2d(c, inputs, s, max_edge);
+        } else if (c.runner == "gqm3d") {
+          r = run_gqm3d(c, inputs, s, bounds);
         } else {
-          r = run_baseline(c, inputs, s, max_edge);
+          r = run_baseline(c, inputs, s, max_edge, bounds);
         }
         if (is_2d_runner(c.runner)) {
           r.min_angle_bound = c.number("min_angle", 20.0);
           r.max_edge = max_edge;
           r.min_input_angle = smallest_input_angle(inputs.pslg(c.input));
+        }
+        if (bounded_3d) {
+          r.radius_edge_bound = bounds.radius_edge;
+          r.max_volume = bounds.max_volume > 0 ? bounds.max_volume : -1;
+          r.min_dihedral_bound = bounds.min_dihedral > 0 ? bounds.min_dihedral : -1;
         }
       } catch (const gdr::Error& e) {
         r.status = "error";
@@ -397,6 +395,7 @@ int main(int argc, char** argv) {
       // Partial results survive a run cut short by the device's time limit.
       compute_ratios(results);
       write_csv((fs::path(s.out_dir) / "bench.csv").string(), results, date, machine);
+      write_histograms((fs::path(s.out_dir) / "histograms.csv").string(), results);
       std::ofstream((fs::path(s.out_dir) / "bench.md").string())
           << markdown_table(results, date, machine);
     }

@@ -19,7 +19,8 @@
 
 namespace gdr_bench {
 
-ProcessResult run_process(const std::vector<std::string>& argv, double timeout_seconds) {
+ProcessResult run_process(const std::vector<std::string>& argv, double timeout_seconds,
+                          const std::string& cwd) {
   int fds[2];
   if (pipe(fds) != 0) throw gdr::Error(gdr::Status::InternalError, "pipe failed");
   std::vector<char*> args;
@@ -40,6 +41,10 @@ ProcessResult run_process(const std::vector<std::string>& argv, double timeout_s
     dup2(fds[1], STDOUT_FILENO);
     close(fds[0]);
     close(fds[1]);
+    if (!cwd.empty() && chdir(cwd.c_str()) != 0) {
+      std::fprintf(stderr, "cannot enter %s: %s\n", cwd.c_str(), std::strerror(errno));
+      _exit(127);
+    }
     execv(args[0], args.data());
     std::fprintf(stderr, "cannot run %s: %s\n", args[0], std::strerror(errno));
     _exit(127);

@@ -1,0 +1,199 @@
+// Generated closed surfaces for the 3D benchmarks, so that no large file is committed:
+//   gen:surface:base=FILE:subdiv=K   midpoint subdivision of a closed surface, K times
+//   gen:torus:triangles=N:bump=A     a bumpy torus of about N triangles
+// Both are checked by the mesher's own surface checks when a case runs (an invalid surface
+// is an error of that case, before anything is timed).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+#include <unordered_map>
+
+#include "bench.h"
+#include "gdr/error.h"
+#include "gdr/io.h"
+
+namespace gdr_bench {
+namespace {
+
+// The key=value parts after "gen:KIND:".
+std::map<std::string, std::string> spec_parts(const std::string& spec, std::string& kind) {
+  std::istringstream parts(spec);
+  std::string part;
+  std::getline(parts, part, ':');  // "gen"
+  std::getline(parts, kind, ':');
+  std::map<std::string, std::string> out;
+  while (std::getline(parts, part, ':')) {
+    const auto eq = part.find('=');
+    if (eq == std::string::npos)
+      throw gdr::Error(gdr::Status::InvalidInput, "'" + spec + "': expected key=value, got '" + part + "'");
+    out[part.substr(0, eq)] = part.substr(eq + 1);
+  }
+  return out;
+}
+
+double spec_number(const std::map<std::string, std::string>& parts, const std::string& key,
+                   double fallback, const std::string& spec) {
+  const auto it = parts.find(key);
+  if (it == parts.end()) return fallback;
+  char* end = nullptr;
+  const double v = std::strtod(it->second.c_str(), &end);
+  if (it->second.empty() || *end != '\0')
+    throw gdr::Error(gdr::Status::InvalidInput, "'" + spec + "': " + key + " is not a number");
+  return v;
+}
+
+// Each triangle becomes four, the new corners at the edge midpoints. One midpoint per edge,
+// shared by both triangles of the edge, keeps the surface closed and manifold; the new
+// triangles lie in their parent's plane (up to the rounding of the midpoints), so the
+// surface keeps its shape and cannot start to intersect itself.
+gdr::Surface midpoint_subdivide(const gdr::Surface& in) {
+  gdr::Surface out;
+  out.points = in.points;
+  out.holes = in.holes;
+  out.regions = in.regions;
+  out.triangles.reserve(4 * in.triangles.size());
+  std::unordered_map<unsigned long long, int> midpoint;
+  midpoint.reserve(2 * in.triangles.size());
+  auto mid = [&](int a, int b) {
+    const unsigned long long key = (static_cast<unsigned long long>(std::min(a, b)) << 32) |
+                                   static_cast<unsigned>(std::max(a, b));
+    const auto [it, added] = midpoint.emplace(key, static_cast<int>(out.points.size()));
+    if (added) {
+      const gdr::Point3 &p = in.points[a], &q = in.points[b];
+      out.points.push_back({0.5 * (p.x + q.x), 0.5 * (p.y + q.y), 0.5 * (p.z + q.z)});
+    }
+    return it->second;
+  };
+  for (const auto& t : in.triangles) {
+    const int ab = mid(t[0], t[1]), bc = mid(t[1], t[2]), ca = mid(t[2], t[0]);
+    out.triangles.push_back({t[0], ab, ca});
+    out.triangles.push_back({ab, t[1], bc});
+    out.triangles.push_back({ca, bc, t[2]});
+    out.triangles.push_back({ab, bc, ca});
+  }
+  // Segments are split at the same midpoints.
+  for (const auto& s : in.segments) {
+    const int m = mid(s[0], s[1]);
+    out.segments.push_back({s[0], m});
+    out.segments.push_back({m, s[1]});
+  }
+  return out;
+}
+
+// Torus around the z axis, major radius 1, tube radius 0.35 (1 + bump f(u, v)), f in [-1, 1].
+// Each cross-section at angle u is star-shaped around its tube centre and stays within
+// 0.35 (1 + bump) < 1 of it, and two cross-sections meet only on the z axis, so the smooth
+// surface is embedded; the triangulation is fine enough to follow it. The bumps keep the
+// vertices off common circles and spheres (a plain torus grid is full of cospherical points).
+gdr::Surface bumpy_torus(double triangles, double bump) {
+  const double R = 1.0, r = 0.35, pi = 3.14159265358979323846;
+  // Rings of nv points around the tube, nu rings around the axis, quads roughly square.
+  // nu even: every ring pairs with a ring of the other half-step offset, also across the seam.
+  const int nu = 2 * std::max(4, static_cast<int>(std::lround(std::sqrt(triangles / 2 * R / r) / 2)));
+  const int nv = std::max(6, static_cast<int>(std::lround(triangles / (2.0 * nu))));
+  gdr::Surface s;
+  s.points.reserve(static_cast<std::size_t>(nu) * nv);
+  for (int i = 0; i < nu; ++i) {
+    for (int j = 0; j < nv; ++j) {
+      // Alternate rings turn by half a step: triangles closer to equilateral.
+      const double u = 2 * pi * i / nu, v = 2 * pi * (j + 0.5 * (i % 2)) / nv;
+      const double f = std::sin(3 * u) * std::cos(2 * v) * 0.7 + std::sin(5 * u + 3 * v) * 0.3;
+      const double rr = r * (1 + bump * f);
+      s.points.push_back({(R + rr * std::cos(v)) * std::cos(u), (R + rr * std::cos(v)) * std::sin(u),
+                          rr * std::sin(v)});
+    }
+  }
+  auto id = [&](int i, int j) { return ((i % nu + nu) % nu) * nv + ((j % nv + nv) % nv); };
+  for (int i = 0; i < nu; ++i) {
+    for (int j = 0; j < nv; ++j) {
+      // Ring i+1 is shifted by half a step against ring i when i is even, back when odd.
+      const int shift = i % 2 == 0 ? 0 : 1;
+      const int a = id(i, j), b = id(i, j + 1), c = id(i + 1, j + shift), d = id(i + 1, j + 1 + shift);
+      s.triangles.push_back({a, c, b});
+      s.triangles.push_back({b, c, d});
+    }
+  }
+  // Outward normals (positive enclosed volume), as the data set's surfaces.
+  double signed_volume = 0;
+  for (const auto& t : s.triangles) {
+    const gdr::Point3 &p = s.points[t[0]], &q = s.points[t[1]], &w = s.points[t[2]];
+    signed_volume += p.x * (q.y * w.z - q.z * w.y) - p.y * (q.x * w.z - q.z * w.x) + p.z * (q.x * w.y - q.y * w.x);
+  }
+  if (signed_volume < 0)
+    for (auto& t : s.triangles) std::swap(t[1], t[2]);
+  return s;
+}
+
+}  // namespace
+
+bool is_surface_spec(const std::string& input) {
+  return input.rfind("gen:surface:", 0) == 0 || input.rfind("gen:torus:", 0) == 0;
+}
+
+gdr::Surface generate_surface(const std::string& spec, const std::string& data_dir) {
+  std::string kind;
+  const auto parts = spec_parts(spec, kind);
+  auto refuse_unknown = [&](std::initializer_list<const char*> known) {
+    for (const auto& [key, value] : parts) {
+      if (std::none_of(known.begin(), known.end(), [&](const char* k) { return key == k; }))
+        throw gdr::Error(gdr::Status::InvalidInput, "unknown key '" + key + "' in '" + spec + "'");
+    }
+  };
+  if (kind == "surface") {
+    refuse_unknown({"base", "subdiv"});
+    const auto base = parts.find("base");
+    if (base == parts.end())
+      throw gdr::Error(gdr::Status::InvalidInput, "'" + spec + "': base=FILE is required");
+    namespace fs = std::filesystem;
+    const std::string path = fs::path(base->second).is_absolute() || fs::exists(base->second)
+                                 ? base->second
+                                 : (fs::path(data_dir) / base->second).string();
+    const double k = spec_number(parts, "subdiv", 1, spec);
+    if (!(k >= 0 && k <= 6 && k == std::floor(k)))
+      throw gdr::Error(gdr::Status::InvalidInput, "'" + spec + "': subdiv must be 0..6");
+    gdr::Surface s = gdr::io::read_surface(path);
+    for (int i = 0; i < static_cast<int>(k); ++i) s = midpoint_subdivide(s);
+    return s;
+  }
+  if (kind == "torus") {
+    refuse_unknown({"triangles", "bump"});
+    const double n = spec_number(parts, "triangles", 100000, spec);
+    const double bump = spec_number(parts, "bump", 0.15, spec);
+    if (!(n >= 96 && n <= 1e8) || !(bump >= 0 && bump <= 0.5))
+      throw gdr::Error(gdr::Status::InvalidInput,
+                       "'" + spec + "': need 96 <= triangles <= 1e8 and 0 <= bump <= 0.5");
+    return bumpy_torus(n, bump);
+  }
+  throw gdr::Error(gdr::Status::InvalidInput,
+                   "unknown surface generator '" + kind + "' in '" + spec + "' (known: surface, torus)");
+}
+
+void write_off(const std::string& path, const gdr::Surface& s) {
+  FILE* f = std::fopen(path.c_str(), "w");
+  if (!f) throw gdr::Error(gdr::Status::IoError, path + ": cannot write");
+  std::fprintf(f, "OFF\n%zu %zu 0\n", s.points.size(), s.triangles.size());
+  for (const auto& p : s.points) std::fprintf(f, "%.17g %.17g %.17g\n", p.x, p.y, p.z);
+  for (const auto& t : s.triangles) std::fprintf(f, "3 %d %d %d\n", t[0], t[1], t[2]);
+  if (std::fclose(f) != 0) throw gdr::Error(gdr::Status::IoError, path + ": write failed");
+}
+
+double enclosed_volume(const gdr::Surface& s) {
+  // Divergence theorem: the signed volumes of the tetrahedra (origin, triangle) add up to
+  // the enclosed volume. Relative to the first point, to keep the terms small.
+  if (s.points.empty()) return 0;
+  const gdr::Point3 o = s.points[0];
+  double six = 0;
+  for (const auto& t : s.triangles) {
+    const gdr::Point3 &a = s.points[t[0]], &b = s.points[t[1]], &c = s.points[t[2]];
+    const double ax = a.x - o.x, ay = a.y - o.y, az = a.z - o.z;
+    const double bx = b.x - o.x, by = b.y - o.y, bz = b.z - o.z;
+    const double cx = c.x - o.x, cy = c.y - o.y, cz = c.z - o.z;
+    six += ax * (by * cz - bz * cy) - ay * (bx * cz - bz * cx) + az * (bx * cy - by * cx);
+  }
+  return std::abs(six) / 6.0;
+}
+
+}  // namespace gdr_bench
