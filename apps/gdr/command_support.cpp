@@ -1,0 +1,67 @@
+#include "command_support.h"
+
+#include <cstdio>
+#include <filesystem>
+
+#include "cli.h"
+#include "gdr/error.h"
+#include "interrupt.h"
+
+namespace gdr::cli {
+
+bool same_file(const std::string& a, const std::string& b) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::equivalent(a, b, ec)) return true;
+  std::error_code ea, eb;
+  const fs::path ca = fs::weakly_canonical(fs::absolute(a), ea);
+  const fs::path cb = fs::weakly_canonical(fs::absolute(b), eb);
+  return !ea && !eb && ca == cb;
+}
+
+void refuse_overwrites(const std::string& command, const std::string& input,
+                       const std::vector<std::string>& reads,
+                       const std::vector<OutputFile>& outputs) {
+  for (const std::string& r : reads)
+    for (const OutputFile& w : outputs)
+      if (same_file(w.path, r))
+        throw UsageError(command, w.option + " would overwrite " +
+                                      (r == input ? "the input " : "the .node beside the input, ") +
+                                      r + ": choose another output name");
+  for (std::size_t i = 0; i < outputs.size(); ++i)
+    for (std::size_t j = i + 1; j < outputs.size(); ++j)
+      if (same_file(outputs[i].path, outputs[j].path))
+        throw UsageError(command, outputs[j].option + " would overwrite " + outputs[i].path +
+                                      ", which " + outputs[i].option + " writes");
+}
+
+void make_parent_dirs(const std::string& path) {
+  const auto parent = std::filesystem::path(path).parent_path();
+  std::error_code ec;
+  if (!parent.empty()) std::filesystem::create_directories(parent, ec);
+  if (ec) throw Error(Status::IoError, parent.string() + ": cannot create folder: " + ec.message());
+}
+
+void stop_if_interrupted() {
+  if (InterruptHandler::received()) throw Error(Status::Aborted, "interrupted");
+}
+
+int run_interruptible(const std::string& output, const std::function<int(bool& written)>& work) {
+  InterruptHandler interrupts;
+  bool written = false;
+  try {
+    return work(written);
+  } catch (const Error& e) {
+    const int signal = InterruptHandler::received();
+    if (e.status() != Status::Aborted || signal == 0) throw;
+    std::fprintf(stderr, "gdr: interrupted%s\n",
+                 written ? (" (" + output + " was written, nothing else)").c_str() : "");
+    return kExitSignalBase + signal;
+  }
+}
+
+double since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace gdr::cli

@@ -1,0 +1,41 @@
+// Steps the meshing commands (gdr 2d, gdr tet) share: output paths checked before anything
+// is read, folders made for outputs, interruption checked between steps, timing.
+#pragma once
+#include <chrono>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace gdr::cli {
+
+// A file a command line writes, and the option that names it (for messages).
+struct OutputFile {
+  std::string path, option;
+};
+
+// Whether two paths name the same file: through links, or the same place once resolved
+// (for files that do not exist yet).
+bool same_file(const std::string& a, const std::string& b);
+
+// Refuses (UsageError of `command`) a command line that would write over one of the files
+// it reads (`input` and the files `reads` lists, e.g. the .node beside a .poly) or write
+// one file twice.
+void refuse_overwrites(const std::string& command, const std::string& input,
+                       const std::vector<std::string>& reads,
+                       const std::vector<OutputFile>& outputs);
+
+// Creates the folders above `path`; IoError when that fails.
+void make_parent_dirs(const std::string& path);
+
+// Throws Error(Aborted) between steps once a signal asked the run to stop (InterruptHandler).
+void stop_if_interrupted();
+
+// Runs `work` with Ctrl-C and SIGTERM caught (InterruptHandler). When a signal stops it,
+// prints "gdr: interrupted" (naming `output` when work had set `written`) and returns
+// 128 + the signal; otherwise returns what work returns.
+int run_interruptible(const std::string& output, const std::function<int(bool& written)>& work);
+
+// Seconds since t0.
+double since(std::chrono::steady_clock::time_point t0);
+
+}  // namespace gdr::cli
