@@ -22,6 +22,7 @@
 #include "gdr/backend.h"
 #include "gdr/error.h"
 #include "gdr/io.h"
+#include "gdr/qm3d.h"
 #include "gdr/refine2d.h"
 #include "gdr/validate.h"
 
@@ -268,16 +269,41 @@ Result run_baseline(const Case& c, Inputs& inputs, const Settings& s, double max
   return r;
 }
 
+// --generate: writes a generated input; --check puts a surface through the mesher's own
+// checks and its CDT (gdr::quality_tet_mesh without refinement), as every case would.
+int generate(const std::string& spec, const std::string& out, const Settings& s, bool check) {
+  if (!is_surface_spec(spec)) {
+    const gdr::Pslg p = generate_pslg(spec);
+    write_poly(out, p);
+    std::printf("%s: %zu points, %zu segments\n", out.c_str(), p.points.size(), p.segments.size());
+    return 0;
+  }
+  const gdr::Surface surface = generate_surface(spec, s.data_dir);
+  write_off(out, surface);
+  std::printf("%s: %zu points, %zu triangles, enclosed volume %.9g\n", out.c_str(),
+              surface.points.size(), surface.triangles.size(), enclosed_volume(surface));
+  if (!check) return 0;
+  gdr::QualityTetOptions o;
+  o.refine = false;
+  o.backend = gdr::Backend::Cpu;
+  const gdr::QualityTetStats st = gdr::quality_tet_mesh(surface, o).stats;
+  std::printf("checked: closed, manifold, no self-intersection (%.2f s); CDT %lld tets, %lld "
+              "Steiner points (%.2f s); domain volume %.9g\n",
+              st.input_seconds, st.output_tets, st.cdt_steiner_points, st.cdt_seconds, st.input_volume);
+  return 0;
+}
+
 void usage() {
   std::cerr
       << "usage: gdr_bench CASES.txt [--out-dir DIR] [--data-dir DIR] [--bin-dir DIR]\n"
          "                 [--work-dir DIR] [--only SUBSTRING]\n"
-         "       gdr_bench --generate SPEC OUT.poly\n"
+         "       gdr_bench --generate SPEC OUT.(poly|off) [--check] [--data-dir DIR]\n"
          "  CASES.txt: one case per line, key=value tokens (see Benchmarks/README.md).\n"
          "  --out-dir: where bench.csv and bench.md go (default .)\n"
          "  --data-dir: base of relative input paths (default ../shared/data of the source tree)\n"
          "  --bin-dir: where the baseline programs are (default: beside gdr_bench)\n"
          "  --only: run only cases whose name contains SUBSTRING\n"
+         "  --check: put a generated surface through the mesher's surface checks and its CDT\n"
          "  SPEC: gen:contours:segments=N:seed=S[:amplitude=A] (2D, writes .poly)\n"
          "        gen:surface:base=FILE:subdiv=K, gen:torus:triangles=N[:bump=A] (3D, writes .off)\n";
 }
@@ -287,23 +313,20 @@ void usage() {
 int main(int argc, char** argv) {
   Settings s;
   s.data_dir = GDR_BENCH_DATA_DIR;
-  std::string cases_path;
+  std::string cases_path, generate_spec, generate_out;
+  bool check_generated = false;
   try {
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
       const bool has_value = i + 1 < argc;
       if (a == "--generate" && i + 2 < argc) {
-        if (is_surface_spec(argv[i + 1])) {
-          const gdr::Surface surface = generate_surface(argv[i + 1], s.data_dir);
-          write_off(argv[i + 2], surface);
-          std::printf("%s: %zu points, %zu triangles, enclosed volume %.9g\n", argv[i + 2],
-                      surface.points.size(), surface.triangles.size(), enclosed_volume(surface));
-          return 0;
-        }
-        const gdr::Pslg p = generate_pslg(argv[i + 1]);
-        write_poly(argv[i + 2], p);
-        std::printf("%s: %zu points, %zu segments\n", argv[i + 2], p.points.size(), p.segments.size());
-        return 0;
+        generate_spec = argv[++i];
+        generate_out = argv[++i];
+        continue;
+      }
+      if (a == "--check") {
+        check_generated = true;
+        continue;
       }
       if (a == "--out-dir" && has_value) s.out_dir = argv[++i];
       else if (a == "--data-dir" && has_value) s.data_dir = argv[++i];
@@ -314,6 +337,7 @@ int main(int argc, char** argv) {
       else if (cases_path.empty() && a[0] != '-') cases_path = a;
       else { usage(); return 2; }
     }
+    if (!generate_spec.empty()) return generate(generate_spec, generate_out, s, check_generated);
     if (cases_path.empty()) {
       usage();
       return 2;
