@@ -410,7 +410,7 @@ void mark_subsegments(const Plc& plc, HostTetMesh& m) {
                               : (m.ptype[v] == m3d::kSegmentPoint && m.pseg[v] == g);
   };
   const int nt = m.tets();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (nt > 20000)
   for (int t = 0; t < nt; ++t) {
     std::uint8_t bits = 0;
     for (int e = 0; e < 6; ++e) {

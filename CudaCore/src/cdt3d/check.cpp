@@ -167,7 +167,7 @@ void clean_triangles(const Surface& s, const Callbacks& cb, Plc& plc) {
   const long long nt = static_cast<long long>(s.triangles.size());
   std::vector<std::array<int, 3>> tri(nt);
   std::vector<char> degenerate(nt, 0);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (nt > 20000)
   for (long long t = 0; t < nt; ++t) {
     for (int k = 0; k < 3; ++k) tri[t][k] = plc.point_map[s.triangles[t][k]];
     const auto& v = tri[t];

@@ -95,7 +95,7 @@ long long find_clashing_triangles(const std::vector<Point3>& points,
   // order within a cell.
   const long long ncells = grid.cells();
   std::vector<std::array<int, 6>> range(nt);  // lo x, y, z, hi x, y, z
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (nt > 20000)
   for (long long t = 0; t < nt; ++t)
     for (int d = 0; d < 3; ++d) {
       range[t][d] = static_cast<int>(grid.cell_of(box[t].lo[d], d));
@@ -131,7 +131,7 @@ long long find_clashing_triangles(const std::vector<Point3>& points,
 
   const std::size_t keep = std::max<std::size_t>(max_pairs, 1) * 64;  // per thread, before sorting
   long long total = 0;
-#pragma omp parallel
+#pragma omp parallel if (nt > 5000)  // small inputs: thread start-up costs more
   {
     std::vector<std::array<int, 2>> mine;
     long long found = 0;
@@ -178,7 +178,7 @@ EdgeTable build_edges(const std::vector<std::array<int, 3>>& triangles) {
         slot[fill[std::min(a, b)]++] = {std::max(a, b), static_cast<int>(t)};
       }
   }
-#pragma omp parallel for schedule(dynamic, 1024)
+#pragma omp parallel for schedule(dynamic, 1024) if (nt > 20000)
   for (int v = 0; v < nv; ++v) std::sort(slot.begin() + start[v], slot.begin() + start[v + 1]);
   EdgeTable table;
   table.tri.resize(slot.size());

@@ -101,7 +101,7 @@ void check_ranges(const HostTetMesh& m) {
 void check_orientation(const HostTetMesh& m) {
   const int nt = m.tets();
   int bad = -1;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (nt > 20000)
   for (int t = 0; t < nt; ++t) {
     const double* p[4];
     for (int k = 0; k < 4; ++k) p[k] = &m.xyz[3 * static_cast<std::size_t>(m.tv[4 * t + k])];
@@ -172,7 +172,7 @@ void check_subfaces(const HostTetMesh& m) {
   }
   // Geometry, exactly: side 0's apex lies where orient3d(sv0, sv1, sv2, apex) > 0.
   int bad = -1;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (ns > 20000)
   for (int s = 0; s < ns; ++s) {
     const double* p[3];
     for (int k = 0; k < 3; ++k) p[k] = &m.xyz[3 * static_cast<std::size_t>(m.sv[3 * s + k])];
