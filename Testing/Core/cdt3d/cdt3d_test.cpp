@@ -297,6 +297,41 @@ TEST(CheckSurface, InternalFacetKeepsBothSides) {
   EXPECT_EQ(plc.segments.size(), 20u);      // 16 box edges (split at x = 1) + 4 around x = 1
 }
 
+TEST(CheckSurface, ThreeRegionsAndConflictingSeeds) {
+  // The box [0,3] x [0,1] x [0,1] cut at x = 1 and x = 2 by two internal facets.
+  Surface s;
+  for (int i = 0; i < 16; ++i) s.points.push_back({double(i % 4), double((i / 4) % 2), double(i / 8)});
+  auto id = [](int x, int y, int z) { return x + 4 * y + 8 * z; };
+  auto quad = [&](int a, int b, int c, int d) {
+    s.triangles.push_back({a, b, c});
+    s.triangles.push_back({a, c, d});
+  };
+  for (int x = 0; x < 3; ++x) {
+    quad(id(x, 0, 0), id(x, 1, 0), id(x + 1, 1, 0), id(x + 1, 0, 0));
+    quad(id(x, 0, 1), id(x + 1, 0, 1), id(x + 1, 1, 1), id(x, 1, 1));
+    quad(id(x, 0, 0), id(x + 1, 0, 0), id(x + 1, 0, 1), id(x, 0, 1));
+    quad(id(x, 1, 0), id(x, 1, 1), id(x + 1, 1, 1), id(x + 1, 1, 0));
+  }
+  for (int x = 0; x < 4; ++x) quad(id(x, 0, 0), id(x, 1, 0), id(x, 1, 1), id(x, 0, 1));
+  s.regions.push_back({{0.5, 0.5, 0.5}, 1, 0});
+  s.regions.push_back({{2.5, 0.5, 0.5}, 3, 0.25});
+  s.regions.push_back({{0.25, 0.25, 0.25}, 5, 0});  // same cell as seed 0: ignored
+  s.holes.push_back({1.5, 0.5, 0.5});
+  std::vector<std::string> warnings;
+  Callbacks cb;
+  cb.warning = [&](const std::string& w) { warnings.push_back(w); };
+  const Plc plc = check_surface(s, {}, cb);
+  EXPECT_NEAR(plc.volume, 2.0, 1e-15);
+  ASSERT_EQ(warnings.size(), 2u);  // the ignored seed, and the triangles around the hole
+  EXPECT_TRUE(has(warnings[0], "region seed 2 lies in the same region as region seed 0")) << warnings[0];
+  const m3d::HostTetMesh m = checked_cdt(plc);
+  double volume[6] = {0, 0, 0, 0, 0, 0};
+  for (int t = 0; t < m.tets(); ++t) volume[m.tregion[t]] += tet_volume(m, t);
+  EXPECT_NEAR(volume[1], 1.0, 1e-14);
+  EXPECT_NEAR(volume[3], 1.0, 1e-14);
+  EXPECT_EQ(volume[0] + volume[5], 0.0);
+}
+
 TEST(CheckSurface, SeedsDecideCells) {
   Surface s = test::split_box();
   s.holes.push_back({0.5, 0.5, 0.5});
@@ -390,6 +425,11 @@ TEST(InitialCdt, HoleSeedInAnInnerCube) {
   const m3d::HostTetMesh m = checked_cdt(check_surface(s));
   EXPECT_NEAR(mesh_volume(m), 1.0, 1e-14);
   for (int f = 0; f < m.subfaces(); ++f) EXPECT_FALSE(m.st[2 * f] >= 0 && m.st[2 * f + 1] >= 0);
+  // Nested cubes with a hole seed in the inner one (a cavity by itself already).
+  Surface h = unit_cube();
+  add_box(h, {0.25, 0.25, 0.25}, {0.75, 0.75, 0.75});
+  h.holes.push_back({0.5, 0.5, 0.5});
+  EXPECT_NEAR(mesh_volume(checked_cdt(check_surface(h))), 0.875, 1e-14);
   // Nested cubes with a region seed inside the inner one: both are meshed, as two regions.
   Surface n = unit_cube();
   add_box(n, {0.25, 0.25, 0.25}, {0.75, 0.75, 0.75});
