@@ -29,6 +29,7 @@
 
 #include "cdt3d/cdt3d.h"
 #include "cdt3d/geometry.h"
+#include "cdt3d/internal.h"
 #include "gdr/error.h"
 #include "mesh3d/tet_topology.h"
 
@@ -108,20 +109,6 @@ std::uint64_t edge_key(int a, int b) {
   if (a > b) std::swap(a, b);
   return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
 }
-
-struct UnionFind {
-  std::vector<int> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
 
 // A triangle's corners, sorted, as a hash key.
 struct FaceKey {

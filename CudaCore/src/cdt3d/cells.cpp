@@ -12,6 +12,7 @@
 // outside) and the seeds decide the domain.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
 #include <queue>
 
@@ -21,20 +22,6 @@
 
 namespace gdr::cdt3d {
 namespace {
-
-struct UnionFind {
-  std::vector<int> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
 
 struct Bounds {
   double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};

@@ -1,6 +1,8 @@
 // Pieces of check_surface, split out to keep each file one job (and to test them alone).
 #pragma once
+#include <algorithm>
 #include <array>
+#include <numeric>
 #include <string>
 #include <vector>
 
@@ -8,6 +10,21 @@
 #include "gdr/pslg.h"
 
 namespace gdr::cdt3d {
+
+// Disjoint sets of 0..n-1; the representative of a set is its smallest member.
+struct UnionFind {
+  std::vector<int> parent;
+  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  int find(int x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  }
+  void unite(int a, int b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  }
+};
 
 // Edges of a triangle set: edge k joins edge[k][0] < edge[k][1]; its triangles are
 // tri[start[k] .. start[k+1]), in increasing order.
