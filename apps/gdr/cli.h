@@ -13,7 +13,8 @@ enum ExitCode : int {
   kExitUsage = 2,        // bad command line
   kExitInput = 3,        // unreadable or refused input (file, format, geometry, parameters)
   kExitDevice = 4,       // no usable GPU for --backend gpu, out of device or host memory
-  kExitInternal = 5      // a bug: an engine invariant failed, or an unexpected exception
+  kExitInternal = 5,     // a bug: an engine invariant failed, or an unexpected exception
+  kExitSignalBase = 128  // + the signal that stopped the run: 130 Ctrl-C, 143 SIGTERM
 };
 
 // A mistake on the command line; main() prints it with a pointer to the command's --help.

@@ -2,17 +2,19 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "args.h"
 #include "cli.h"
+#include "command_support.h"
 #include "gdr/backend.h"
 #include "gdr/io.h"
 #include "gdr/refine2d.h"
 #include "gdr/validate.h"
+#include "interrupt.h"
 #include "json_writer.h"
 #include "mesh_attributes.h"
 #include "progress_bar.h"
@@ -33,8 +35,15 @@ the convex hull is meshed too unless --remove-exterior is given. OUTPUT is writt
 extension:
   .vtu / .vtp   VTK XML (ParaView) with cell arrays MinAngle, MaxAngle, RadiusEdgeRatio,
                 Area, IsBad and point array PointType (0 input, 1 on a segment, 2 free)
-  .node / .ele  Triangle's format (OUTPUT.node, OUTPUT.ele and OUTPUT.poly of subsegments)
+  .node / .ele  Triangle's format: -o BASE.node (or BASE.ele) writes three files,
+                BASE.node, BASE.ele and BASE.poly (the subsegments)
 Without -o the mesh is computed, summarized and (with --check) validated, but not written.
+gdr never writes over its input: an output (or --stats-json) that would replace INPUT, or
+the .node beside a .poly INPUT (where a .poly without points takes them from), is refused
+before anything is read. Each file is written in full under a temporary name, then renamed:
+an existing output is only ever replaced by a complete new one. Ctrl-C (or SIGTERM) stops
+the run: it prints "interrupted", exits with 130 (143) and leaves the outputs as they were,
+unless it comes while they are being written (then they are completed first).
 
 Quality and size:
   --min-angle DEG         smallest angle wanted, in degrees (default 20, at most 34;
@@ -65,8 +74,8 @@ Examples:
   gdr 2d map.poly -o map.vtp --remove-exterior --backend gpu --stats-json map.json
   gdr 2d shape.poly -o shape.node --cdt-only
 
-Exit codes: 0 ok, 1 invalid mesh (--check), 2 usage error, 3 input error, 4 device error,
-5 internal error.
+Exit codes: 0 ok, 1 invalid mesh (--check), 2 usage error (also: an output that would
+overwrite an input), 3 input error, 4 device error, 5 internal error, 130 interrupted.
 )";
 
 struct Args2d {
@@ -139,10 +148,6 @@ Args2d parse_2d(const std::vector<std::string>& args) {
   return a;
 }
 
-double since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
 struct CliTimes {
   double read = 0, write = 0, check = 0, wall = 0;
 };
@@ -206,8 +211,7 @@ void print_summary(const Args2d& a, const Pslg& input, const Refine2dResult& r,
 
 void write_stats_json(const std::string& path, const Args2d& a, const Refine2dResult& r,
                       const ValidationReport* report, const CliTimes& t) {
-  std::ofstream out(path);
-  if (!out) throw Error(Status::IoError, path + ": cannot open for writing");
+  std::ostringstream out;
   const Refine2dStats& s = r.stats;
   const Refine2dOptions& o = a.options;
   JsonWriter j(out);
@@ -309,14 +313,18 @@ void write_stats_json(const std::string& path, const Args2d& a, const Refine2dRe
     j.end_object();
   }
   j.end_object();
-  if (!out) throw Error(Status::IoError, path + ": write failed");
+  io::write_file_atomically(path, out.str());
 }
 
-void make_parent_dirs(const std::string& path) {
-  const auto parent = std::filesystem::path(path).parent_path();
-  std::error_code ec;
-  if (!parent.empty()) std::filesystem::create_directories(parent, ec);
-  if (ec) throw Error(Status::IoError, parent.string() + ": cannot create folder: " + ec.message());
+// Refuses, before anything is read, a command line that would write over one of the files
+// it reads or write one file twice.
+void refuse_overwrites(const Args2d& a) {
+  std::vector<OutputFile> outputs;
+  if (!a.output.empty())
+    for (const std::string& f : io::trimesh_output_files(a.output))
+      outputs.push_back({f, "-o " + a.output});
+  if (!a.stats_json.empty()) outputs.push_back({a.stats_json, "--stats-json " + a.stats_json});
+  refuse_overwrites("2d", a.input, io::poly_input_files(a.input), outputs);
 }
 
 Pslg read_input(const std::string& path) {
@@ -327,14 +335,7 @@ Pslg read_input(const std::string& path) {
   return io::read_poly(path);
 }
 
-}  // namespace
-
-int run_2d(const std::vector<std::string>& args) {
-  const Args2d a = parse_2d(args);
-  if (a.help) {
-    std::fputs(kHelp2d, stdout);
-    return kExitOk;
-  }
+int mesh_2d(const Args2d& a, bool& written) {
   const auto t_start = std::chrono::steady_clock::now();
   CliTimes t;
   ProgressBar bar(!a.quiet);
@@ -343,19 +344,24 @@ int run_2d(const std::vector<std::string>& args) {
   auto t0 = std::chrono::steady_clock::now();
   const Pslg input = read_input(a.input);
   t.read = since(t0);
+  stop_if_interrupted();
 
   Callbacks callbacks;
   callbacks.progress = [&bar](double f, const std::string& phase) { bar.update(f, phase); };
   if (!a.quiet)
     callbacks.warning = [&bar](const std::string& m) { bar.message("gdr: warning: " + m); };
+  callbacks.abort = [] { return InterruptHandler::received() != 0; };
   const Refine2dResult result = refine_2d(input, a.options, callbacks);
+  stop_if_interrupted();
 
   if (!a.output.empty()) {
     bar.update(-1, "writing " + a.output);
     t0 = std::chrono::steady_clock::now();
     make_parent_dirs(a.output);
     io::write_mesh(a.output, result.mesh, triangle_attributes(result.mesh, a.options.min_angle));
+    written = true;
     t.write = since(t0);
+    stop_if_interrupted();
   }
 
   ValidationReport report;
@@ -366,6 +372,7 @@ int run_2d(const std::vector<std::string>& args) {
     vo.min_angle_deg = a.options.min_angle;
     report = validate_trimesh(result.mesh, &input, vo);
     t.check = since(t0);
+    stop_if_interrupted();
   }
   t.wall = since(t_start);
   bar.finish();
@@ -383,6 +390,28 @@ int run_2d(const std::vector<std::string>& args) {
     return kExitInvalidMesh;
   }
   return kExitOk;
+}
+
+}  // namespace
+
+int run_2d(const std::vector<std::string>& args) {
+  const Args2d a = parse_2d(args);
+  if (a.help) {
+    std::fputs(kHelp2d, stdout);
+    return kExitOk;
+  }
+  refuse_overwrites(a);
+  InterruptHandler interrupts;
+  bool written = false;
+  try {
+    return mesh_2d(a, written);
+  } catch (const Error& e) {
+    const int signal = InterruptHandler::received();
+    if (e.status() != Status::Aborted || signal == 0) throw;
+    std::fprintf(stderr, "gdr: interrupted%s\n",
+                 written ? (" (" + a.output + " was written, nothing else)").c_str() : "");
+    return kExitSignalBase + signal;
+  }
 }
 
 }  // namespace gdr::cli

@@ -37,6 +37,7 @@ Exit codes:
   3  input error (missing or malformed file, invalid geometry, refused parameters)
   4  device error (--backend gpu without a usable GPU, out of device or host memory)
   5  internal error (a bug; please report it with the input)
+  130  interrupted (Ctrl-C; 143 for SIGTERM)
 )";
 
 int exit_code_for(gdr::Status s) {

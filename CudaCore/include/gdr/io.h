@@ -12,6 +12,8 @@ namespace gdr::io {
 // point section is empty takes its points from the .node file beside it. Also reads .node.
 // Attributes, boundary markers and regional attributes are skipped.
 Pslg read_poly(const std::string& path);
+// The files read_poly(path) may read: `path`, and for a .poly the .node beside it.
+std::vector<std::string> poly_input_files(const std::string& path);
 
 // Triangle .node/.ele as a TriMesh. A .poly with no points beside the .ele (same base name,
 // as write_triangle writes it) gives the subsegments; its segment markers are read back
@@ -88,7 +90,17 @@ void write_medit(const std::string& path, const TetMesh& mesh);
 void write_mesh(const std::string& path, const TriMesh& mesh, const Attributes& attributes = {});
 // A TetMesh by .vtu, .mesh (Medit), or .node, .ele or .face (TetGen's three files).
 void write_mesh(const std::string& path, const TetMesh& mesh, const Attributes& attributes = {});
+// The files write_mesh(path, TriMesh) writes: `path`, or for .node/.ele Triangle's three,
+// BASE.node, BASE.ele and BASE.poly.
+std::vector<std::string> trimesh_output_files(const std::string& path);
 // The files write_mesh(path, TetMesh) writes: `path`, or for .node/.ele/.face TetGen's three.
 std::vector<std::string> tetmesh_output_files(const std::string& path);
+
+// Every writer above writes atomically: each file goes to a temporary file in its folder,
+// flushed to disk, and is renamed into place once all files of the set are complete. An
+// error or a crash leaves an existing output as it was or replaced by a complete new one,
+// never half written (only a crash between the renames of a set can mix old and new files).
+// For any other output (statistics, reports):
+void write_file_atomically(const std::string& path, const std::string& bytes);
 
 }  // namespace gdr::io

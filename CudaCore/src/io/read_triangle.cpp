@@ -31,6 +31,11 @@ void read_segments(TextFile& file, const NodeList& nodes, std::vector<std::array
 
 }  // namespace
 
+std::vector<std::string> poly_input_files(const std::string& path) {
+  if (extension_of(path) != ".poly") return {path};
+  return {path, strip_extension(path) + ".node"};  // as read_poly_point_section finds it
+}
+
 Pslg read_poly(const std::string& path) {
   Pslg pslg;
   if (extension_of(path) == ".node") {

@@ -75,9 +75,6 @@ std::string extension_of(const std::string& path);
 // Path without its extension.
 std::string strip_extension(const std::string& path);
 bool file_exists(const std::string& path);
-// Writes through a temporary file renamed into place, so a failed write never leaves a
-// half-written output behind.
-void write_file_atomically(const std::string& path, const std::string& bytes);
 // Shortest decimal text that reads back to the same double.
 void append_number(std::string& out, double v);
 void append_number(std::string& out, long long v);

@@ -1,10 +1,102 @@
-// Triangle (.node/.ele/.poly) and TetGen (.node/.ele/.face) writers, and write_mesh.
+// Triangle (.node/.ele/.poly) and TetGen (.node/.ele/.face) writers, write_mesh, and the
+// atomic file writing they all share.
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+
 #include "gdr/error.h"
 #include "gdr/io.h"
 #include "io/text_file.h"
 
 namespace gdr::io {
 namespace {
+
+// Files written as one set: each goes to a new temporary file beside its destination (the
+// same folder, so that the rename stays on one file system), flushed to disk; commit()
+// renames them all into place. Until then the destinations are untouched; the destructor
+// removes temporaries that were not committed (an error, an exception).
+class OutputFiles {
+ public:
+  OutputFiles() = default;
+  OutputFiles(const OutputFiles&) = delete;
+  OutputFiles& operator=(const OutputFiles&) = delete;
+  ~OutputFiles() {
+    for (const File& f : pending_)
+      if (!f.temporary.empty()) ::unlink(f.temporary.c_str());
+  }
+
+  void write(const std::string& path, const std::string& bytes) {
+    File f{temporary_name(path), path};
+    // Exclusive creation: a temporary never replaces a file of the user's.
+    int fd = -1;
+    for (int attempt = 0; fd < 0; ++attempt) {
+      fd = ::open(f.temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+      if (fd >= 0) break;
+      if (errno != EEXIST || attempt == 100) fail(path, "cannot open a new file in its folder");
+      f.temporary = temporary_name(path);
+    }
+    pending_.push_back(f);
+    const char* p = bytes.data();
+    std::size_t left = bytes.size();
+    while (left > 0) {
+      const ssize_t n = ::write(fd, p, left);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) {
+        const int e = errno;
+        ::close(fd);
+        errno = e;
+        fail(path, "write failed");
+      }
+      p += n;
+      left -= static_cast<std::size_t>(n);
+    }
+    if (::fsync(fd) != 0) {
+      const int e = errno;
+      ::close(fd);
+      errno = e;
+      fail(path, "write failed");
+    }
+    if (::close(fd) != 0) fail(path, "write failed");
+  }
+
+  void commit() {
+    // A folder in the way is what makes a rename fail in practice: look before moving any.
+    for (const File& f : pending_)
+      if (std::filesystem::is_directory(f.path))
+        throw Error(Status::IoError, f.path + ": is a folder");
+    for (File& f : pending_) {
+      if (std::rename(f.temporary.c_str(), f.path.c_str()) != 0)
+        fail(f.path, "cannot move the written file into place");
+      f.temporary.clear();  // moved: nothing left to remove
+    }
+    pending_.clear();
+  }
+
+ private:
+  struct File {
+    std::string temporary, path;
+  };
+
+  // A hidden name beside `path`, unique to this process and call.
+  static std::string temporary_name(const std::string& path) {
+    static std::atomic<unsigned> counter{0};
+    const std::filesystem::path p(path);
+    const std::string name = "." + p.filename().string() + "." + std::to_string(::getpid()) +
+                             "-" + std::to_string(counter++) + ".tmp";
+    return (p.parent_path() / name).string();
+  }
+
+  [[noreturn]] static void fail(const std::string& path, const char* what) {
+    throw Error(Status::IoError, path + ": " + what + ": " + std::strerror(errno));
+  }
+
+  std::vector<File> pending_;
+};
 
 template <std::size_t N>
 void append_elements(std::string& out, const std::vector<std::array<int, N>>& elements,
@@ -61,18 +153,33 @@ std::string node_file_3d(const std::vector<Point3>& points) {
 
 }  // namespace
 
+void write_file_atomically(const std::string& path, const std::string& bytes) {
+  OutputFiles files;
+  files.write(path, bytes);
+  files.commit();
+}
+
+std::vector<std::string> trimesh_output_files(const std::string& path) {
+  const std::string ext = extension_of(path);
+  if (ext != ".node" && ext != ".ele") return {path};
+  const std::string base = strip_extension(path);
+  return {base + ".node", base + ".ele", base + ".poly"};
+}
+
 void write_triangle(const std::string& base, const TriMesh& mesh) {
   check_indices("a triangle", mesh.points.size(), mesh.triangles);
   check_indices("a subsegment", mesh.points.size(), mesh.subsegments);
+  OutputFiles files;
+  files.write(base + ".node", node_file_2d(mesh.points));
   std::string ele = std::to_string(mesh.triangles.size()) + " 3 0\n";
   append_elements(ele, mesh.triangles, nullptr);
+  files.write(base + ".ele", ele);
   // Subsegments as a point-less .poly; the segment marker is the source input segment.
   std::string poly = "0 2 0 0\n" + std::to_string(mesh.subsegments.size()) + " 1\n";
   append_elements(poly, mesh.subsegments, &mesh.subsegment_source);
   poly += "0\n";
-  write_file_atomically(base + ".node", node_file_2d(mesh.points));
-  write_file_atomically(base + ".ele", ele);
-  write_file_atomically(base + ".poly", poly);
+  files.write(base + ".poly", poly);
+  files.commit();
 }
 
 void write_tetgen(const std::string& base, const TetMesh& mesh) {
@@ -88,9 +195,11 @@ void write_tetgen(const std::string& base, const TetMesh& mesh) {
   append_elements(ele, tets, regions ? &mesh.tet_region : nullptr);
   std::string face = std::to_string(mesh.subfaces.size()) + (facets ? " 1\n" : " 0\n");
   append_elements(face, mesh.subfaces, facets ? &mesh.subface_facet : nullptr);
-  write_file_atomically(base + ".node", node_file_3d(mesh.points));
-  write_file_atomically(base + ".ele", ele);
-  write_file_atomically(base + ".face", face);
+  OutputFiles files;
+  files.write(base + ".node", node_file_3d(mesh.points));
+  files.write(base + ".ele", ele);
+  files.write(base + ".face", face);
+  files.commit();
 }
 
 void write_mesh(const std::string& path, const TriMesh& mesh, const Attributes& attributes) {
