@@ -37,8 +37,9 @@ Result skipped(const std::string& why) {
 std::string last_line(const std::string& out) {
   const auto end = out.find_last_not_of("\r\n");
   if (end == std::string::npos) return "";
-  const auto start = out.find_last_of('\n', end);
-  return out.substr(start == std::string::npos ? 0 : start + 1, end + 1 - (start == std::string::npos ? 0 : start + 1));
+  const auto newline = out.find_last_of('\n', end);
+  const std::size_t start = newline == std::string::npos ? 0 : newline + 1;
+  return out.substr(start, end + 1 - start);
 }
 
 // A folder of its own per run: anchors write files beside their input or in the current dir.

@@ -32,10 +32,10 @@ r2d::Criteria make_criteria(const Refine2dOptions& o) {
   c.sin2_min_angle = o.min_angle > 0 ? s * s : 0.0;
   c.max_edge2 = o.max_edge_length * o.max_edge_length;
   c.max_area2 = 2.0 * o.max_area;
-  if (o.off_centers && o.min_angle > 0) {
-    const double beta = 1.0 / (2.0 * s);
-    c.offcenter_h = std::sqrt(beta * beta - 0.25);
-  }
+  // Off-centres: the new triangle on the shortest edge gets an apex angle of theta at the
+  // height cot(theta/2)/2 over it (kernels.h); 5% lower, so that rounding cannot leave that
+  // triangle just below theta, bad again.
+  if (o.off_centers && o.min_angle > 0) c.offcenter_h = 0.95 * 0.5 / std::tan(o.min_angle * kPi / 360.0);
   c.chew = o.mode == EncroachMode::Chew ? 1 : 0;
   return c;
 }
