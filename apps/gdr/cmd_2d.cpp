@@ -401,17 +401,7 @@ int run_2d(const std::vector<std::string>& args) {
     return kExitOk;
   }
   refuse_overwrites(a);
-  InterruptHandler interrupts;
-  bool written = false;
-  try {
-    return mesh_2d(a, written);
-  } catch (const Error& e) {
-    const int signal = InterruptHandler::received();
-    if (e.status() != Status::Aborted || signal == 0) throw;
-    std::fprintf(stderr, "gdr: interrupted%s\n",
-                 written ? (" (" + a.output + " was written, nothing else)").c_str() : "");
-    return kExitSignalBase + signal;
-  }
+  return run_interruptible(a.output, [&a](bool& written) { return mesh_2d(a, written); });
 }
 
 }  // namespace gdr::cli
