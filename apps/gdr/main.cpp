@@ -17,6 +17,7 @@ const char* kHelp = R"(gdr - quality Delaunay meshing on the GPU (CUDA) or the C
 
 Usage:
   gdr 2d INPUT.poly -o OUTPUT [options]   refine a 2D planar straight-line graph
+  gdr tet INPUT -o OUTPUT [options]       quality tetrahedral mesh of a closed 3D surface
   gdr info INPUT                          describe an input file (counts, bounding box, kind)
   gdr selfcheck                           show the build and device, mesh a small test case
   gdr --version                           print the version and build configuration
@@ -25,10 +26,12 @@ Usage:
 Examples:
   gdr 2d apps/gdr/examples/gear.poly -o gear.vtu --min-angle 25 --remove-exterior --check
   gdr 2d shape.poly -o shape.node --max-area 0.01 --backend cpu
+  gdr tet apps/gdr/examples/bushing.off -o bushing.vtu --radius-edge 1.4 --check
   gdr info apps/gdr/examples/gear.poly
 
-Inputs are Triangle .poly/.node files (2D). Outputs are chosen by extension: .vtu or .vtp
-(open them in ParaView) or .node/.ele (Triangle's format).
+Inputs are Triangle .poly/.node files (2D), and closed surfaces as .off, .stl, .ply, .obj
+or TetGen .poly/.smesh (3D). Outputs are chosen by extension: .vtu or .vtp (open them in
+ParaView), .node/.ele (Triangle's format), TetGen's .node/.ele/.face, or Medit's .mesh (3D).
 
 Exit codes:
   0  success
@@ -72,6 +75,7 @@ int dispatch(const std::vector<std::string>& argv) {
     return kExitOk;
   }
   if (cmd == "2d") return run_2d(rest);
+  if (cmd == "tet") return run_tet(rest);
   if (cmd == "info") return run_info(rest);
   if (cmd == "selfcheck") return run_selfcheck(rest);
   throw UsageError("", "unknown command '" + cmd + "'");
