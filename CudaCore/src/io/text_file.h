@@ -1,6 +1,7 @@
 // Line-oriented tokenizer for the text mesh formats. Every error names the file and line,
 // so a malformed input is reported as "PATH:LINE: reason" and never reaches the mesher.
 #pragma once
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <string>
@@ -78,6 +79,23 @@ bool file_exists(const std::string& path);
 // Shortest decimal text that reads back to the same double.
 void append_number(std::string& out, double v);
 void append_number(std::string& out, long long v);
+
+// Appends rows 0..n-1 of a text file, each formatted by row(text, i) (which must not
+// throw). Blocks of rows are formatted in parallel: number formatting is most of the time
+// a large mesh takes to write.
+template <class Row>
+void append_rows(std::string& out, std::size_t n, const Row& row) {
+  constexpr std::size_t kBlock = 1 << 15;
+  const long long blocks = static_cast<long long>((n + kBlock - 1) / kBlock);
+  std::vector<std::string> text(blocks);
+#pragma omp parallel for schedule(dynamic) if (blocks > 1)
+  for (long long b = 0; b < blocks; ++b) {
+    const std::size_t begin = static_cast<std::size_t>(b) * kBlock;
+    const std::size_t end = std::min(n, begin + kBlock);
+    for (std::size_t i = begin; i < end; ++i) row(text[b], i);
+  }
+  for (const std::string& t : text) out += t;
+}
 
 // Triangulates a simple polygon given by vertex indices into `points` (3D, any plane) by ear
 // clipping in the polygon's plane; appends triangles with the polygon's orientation.

@@ -1,5 +1,4 @@
 // Medit .mesh writer (ASCII, MeshVersionFormatted 2), read by Gmsh, MMG and Medit itself.
-#include <algorithm>
 #include <array>
 
 #include "gdr/error.h"
@@ -8,22 +7,6 @@
 
 namespace gdr::io {
 namespace {
-
-// Appends rows 0..n-1, each formatted by row(text, i). Blocks of rows are formatted in
-// parallel: number formatting is most of the time a large mesh takes to write.
-template <class Row>
-void append_rows(std::string& out, std::size_t n, const Row& row) {
-  constexpr std::size_t kBlock = 1 << 15;
-  const long long blocks = static_cast<long long>((n + kBlock - 1) / kBlock);
-  std::vector<std::string> text(blocks);
-#pragma omp parallel for schedule(dynamic) if (blocks > 1)
-  for (long long b = 0; b < blocks; ++b) {
-    const std::size_t begin = static_cast<std::size_t>(b) * kBlock;
-    const std::size_t end = std::min(n, begin + kBlock);
-    for (std::size_t i = begin; i < end; ++i) row(text[b], i);
-  }
-  for (const std::string& t : text) out += t;
-}
 
 template <std::size_t N>
 void check_corners(const char* what, const std::vector<std::array<int, N>>& elements,

@@ -101,18 +101,18 @@ class OutputFiles {
 template <std::size_t N>
 void append_elements(std::string& out, const std::vector<std::array<int, N>>& elements,
                      const std::vector<int>* markers) {
-  for (std::size_t i = 0; i < elements.size(); ++i) {
-    append_number(out, static_cast<long long>(i));
+  append_rows(out, elements.size(), [&](std::string& text, std::size_t i) {
+    append_number(text, static_cast<long long>(i));
     for (int v : elements[i]) {
-      out += ' ';
-      append_number(out, static_cast<long long>(v));
+      text += ' ';
+      append_number(text, static_cast<long long>(v));
     }
     if (markers) {
-      out += ' ';
-      append_number(out, static_cast<long long>(i < markers->size() ? (*markers)[i] : -1));
+      text += ' ';
+      append_number(text, static_cast<long long>(i < markers->size() ? (*markers)[i] : -1));
     }
-    out += '\n';
-  }
+    text += '\n';
+  });
 }
 
 template <class P>
@@ -127,27 +127,27 @@ void check_indices(const char* what, std::size_t points, const P& elements) {
 // Files are 0-based, as both Triangle and TetGen accept.
 std::string node_file_2d(const std::vector<Point2>& points) {
   std::string out = std::to_string(points.size()) + " 2 0 0\n";
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    append_number(out, static_cast<long long>(i));
-    out += ' ';
-    append_number(out, points[i].x);
-    out += ' ';
-    append_number(out, points[i].y);
-    out += '\n';
-  }
+  append_rows(out, points.size(), [&](std::string& text, std::size_t i) {
+    append_number(text, static_cast<long long>(i));
+    text += ' ';
+    append_number(text, points[i].x);
+    text += ' ';
+    append_number(text, points[i].y);
+    text += '\n';
+  });
   return out;
 }
 
 std::string node_file_3d(const std::vector<Point3>& points) {
   std::string out = std::to_string(points.size()) + " 3 0 0\n";
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    append_number(out, static_cast<long long>(i));
+  append_rows(out, points.size(), [&](std::string& text, std::size_t i) {
+    append_number(text, static_cast<long long>(i));
     for (double c : {points[i].x, points[i].y, points[i].z}) {
-      out += ' ';
-      append_number(out, c);
+      text += ' ';
+      append_number(text, c);
     }
-    out += '\n';
-  }
+    text += '\n';
+  });
   return out;
 }
 

@@ -508,6 +508,43 @@ TEST(Write, MeditReadsBackWithItsReferences) {
   EXPECT_EQ(p.triangle_ref, std::vector<int>(m.subfaces.size(), 0));
 }
 
+// Files of more rows than one formatting block (they are formatted in parallel blocks)
+// read back in order.
+TEST(Write, LargeTetgenAndMeditFilesReadBackInOrder) {
+  TetMesh m;
+  const int n = 20;  // 20^3 cubes of 6 tetrahedra: 48,000 rows
+  auto id = [&](int i, int j, int k) { return (k * (n + 1) + j) * (n + 1) + i; };
+  for (int k = 0; k <= n; ++k)
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) m.points.push_back({0.1 * i, 0.3 * j, 0.7 * k});
+  const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        for (const auto& p : perms) {
+          int c[3] = {i, j, k};
+          std::array<int, 4> t;
+          t[0] = id(c[0], c[1], c[2]);
+          for (int s = 0; s < 3; ++s) {
+            ++c[p[s]];
+            t[s + 1] = id(c[0], c[1], c[2]);
+          }
+          const auto& q = m.points;
+          if (tet_volume(q[t[0]], q[t[1]], q[t[2]], q[t[3]]) < 0) std::swap(t[2], t[3]);
+          m.tets.push_back(t);
+          m.tet_region.push_back(static_cast<int>(m.tets.size() % 7));
+        }
+  m.point_type.assign(m.points.size(), PointType::Free);
+  io::write_mesh(kOut + "/large.ele", m);
+  TetMesh r = io::read_tetgen_mesh(kOut + "/large.node", kOut + "/large.ele");
+  expect_same_mesh(m, r);
+  io::write_mesh(kOut + "/large.mesh", m);
+  MeditMesh e = read_medit(kOut + "/large.mesh");
+  for (auto& t : e.mesh.tets) std::swap(t[0], t[1]);
+  e.mesh.tet_region = e.tet_ref;
+  expect_same_mesh(m, e.mesh);
+}
+
 TEST(Write, TetVtuHasVtkOrientationAndRegions) {
   const TetMesh m = two_cubes();
   io::Attributes attr;
