@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
-"""Ctrl-C (SIGINT) and SIGTERM stop `gdr 2d` cleanly: it says "gdr: interrupted", exits
-with 128 + the signal, soon, and leaves an existing output as it was, with no other file
-(statistics, temporaries) written.
+"""Ctrl-C (SIGINT) and SIGTERM stop `gdr 2d` (or another meshing command) cleanly: it says
+"gdr: interrupted", exits with 128 + the signal, soon, and leaves an existing output as it
+was, with no other file (statistics, temporaries) written.
 
-Usage: interrupt_test.py GDR INPUT.poly WORKDIR
+Usage: interrupt_test.py GDR INPUT WORKDIR [COMMAND OPTION...]
+(default: 2d --max-area 1e-6 --backend cpu)
 
 The signal goes out once the progress bar shows refinement iterations (stderr is a
 pseudo-terminal, so the bar appears after 0.3 s), into a run that takes tens of seconds."""
@@ -32,14 +33,13 @@ def read_until(fd, token, timeout):
     return seen
 
 
-def check(gdr, poly, work, sig):
+def check(gdr, poly, work, sig, command):
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
     with open(os.path.join(work, "out.vtu"), "wb") as f:
         f.write(OLD)
     master, slave = pty.openpty()
-    cmd = [gdr, "2d", poly, "-o", "out.vtu", "--stats-json", "s.json", "--max-area", "1e-6",
-           "--backend", "cpu"]
+    cmd = [gdr, command[0], poly, "-o", "out.vtu", "--stats-json", "s.json"] + command[1:]
     proc = subprocess.Popen(cmd, cwd=work, stdin=subprocess.DEVNULL,
                             stdout=subprocess.DEVNULL, stderr=slave)
     os.close(slave)
@@ -78,8 +78,9 @@ def check(gdr, poly, work, sig):
 
 def main():
     gdr, poly, work = (os.path.abspath(a) for a in sys.argv[1:4])
-    problems = check(gdr, poly, os.path.join(work, "int"), signal.SIGINT)
-    problems += check(gdr, poly, os.path.join(work, "term"), signal.SIGTERM)
+    command = sys.argv[4:] or ["2d", "--max-area", "1e-6", "--backend", "cpu"]
+    problems = check(gdr, poly, os.path.join(work, "int"), signal.SIGINT, command)
+    problems += check(gdr, poly, os.path.join(work, "term"), signal.SIGTERM, command)
     for p in problems:
         print("FAILED:", p)
     return 1 if problems else 0
