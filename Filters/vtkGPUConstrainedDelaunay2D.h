@@ -86,8 +86,9 @@ public:
   ///@{
   /**
    * Cap on the number of Steiner points; refinement stops cleanly when it is reached.
-   * -1 (default) means none up to 30 degrees and, above, where refinement may cascade
-   * without end, 1000 times the input points (at least 1M).
+   * -1 (default) means an automatic cap, so that a run that cascades (above 30 degrees) or
+   * a thin domain ends: 1000 times the input points, at least 1M and at least 4 times the
+   * triangles the size bounds ask for, and no more than memory holds.
    */
   vtkSetClampMacro(MaximumSteinerPoints, vtkIdType, -1, VTK_ID_MAX);
   vtkGetMacro(MaximumSteinerPoints, vtkIdType);

@@ -51,9 +51,10 @@ Quality and size:
                           cascade, see --max-steiner and README "Known limits")
   --max-edge L            longest edge allowed (default: no limit)
   --max-area A            largest triangle area allowed (default: no limit)
-  --max-steiner N         stop cleanly after inserting N Steiner points (default: no
-                          cap up to 30 degrees; above, 1000 times the input points,
-                          at least 1M)
+  --max-steiner N         stop cleanly after inserting N Steiner points (default: 1000
+                          times the input points, at least 1M and 4 times the triangles
+                          the size bounds ask for, within memory); bounds whose mesh
+                          cannot fit in memory are refused before refining
 Algorithm:
   --mode ruppert|chew     encroachment by diametral circle (ruppert, default) or lens (chew)
   --off-centers           insert off-centers instead of circumcenters (fewer points)

@@ -14,13 +14,18 @@ namespace gdr {
 
 enum class EncroachMode { Ruppert = 0, Chew = 1 };  // diametral circle | diametral lens
 
+// Bounds are refused (InvalidInput) when the kernels could not honour them: a maximum edge
+// length whose square, or a maximum area whose double, or a minimum angle whose sin^2 leaves
+// the normal range of doubles. Size bounds whose least output cannot fit in memory are
+// refused before refinement (OutOfDeviceMemory), with the estimate in the message.
 struct Refine2dOptions {
   double min_angle = 20.0;         // degrees, (0, 34]; 0 disables the angle criterion
   double max_edge_length = 0.0;    // 0 = off
   double max_area = 0.0;           // 0 = off
-  // Refinement stops cleanly at this many Steiner points. -1 (automatic): no cap up to 30
-  // degrees; above, where refinement may not terminate, a cap of 1000 times the input points
-  // (at least 1M, and at least 4x the triangles the size bounds ask for).
+  // Refinement stops cleanly at this many Steiner points. -1 (automatic): 1000 times the
+  // input points, at least 1M and at least 4x the triangles the size bounds ask for, and no
+  // more than memory holds, so that a run that cascades (above 30 degrees) or a thin domain
+  // ends and reports instead of taking all memory.
   long long max_steiner_points = -1;
   EncroachMode mode = EncroachMode::Ruppert;
   bool off_centers = false;        // Ungor off-centers instead of circumcenters (fewer points)
@@ -51,8 +56,8 @@ struct Refine2dStats {
   long long bad_triangles = 0;        // left bad (next to small input angles, or capped)
   double bad_area_percent = 0;
   long long small_angle_bad = 0;      // of those: protected by the small-input-angle rule
-  long long steiner_cap = -1;         // the cap in effect (-1: none)
-  bool automatic_steiner_cap = false; // it is the automatic one (min angle above 30 degrees)
+  long long steiner_cap = -1;         // the cap in effect (-1: none, without refinement)
+  bool automatic_steiner_cap = false; // it is the automatic one
   bool steiner_cap_reached = false;
   bool stalled = false;               // no point could be inserted although bad elements remain
   double min_angle_deg = 0;           // smallest angle in the output

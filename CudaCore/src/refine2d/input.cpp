@@ -1,6 +1,7 @@
 #include "refine2d/input.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <parallel/algorithm>
 #include <sstream>
@@ -246,6 +247,43 @@ namespace gdr {
 using r2d::invalid;
 using r2d::list_ints;
 
+namespace {
+
+std::string shown(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+bool normal(double v) { return v >= DBL_MIN && v <= DBL_MAX; }
+
+// The kernels compare squared edge lengths, twice the area and sin^2 of the angle: a bound
+// whose square (or double) leaves the normal doubles would become 0 (off) or infinity (never
+// met), or lose its precision, and be ignored. Such a bound is refused, unless no element of
+// the input's extent could exceed it anyway.
+void check_bounds_representable(const Pslg& in, const Refine2dOptions& o) {
+  double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+  for (const Point2& p : in.points) {
+    x0 = std::min(x0, p.x), x1 = std::max(x1, p.x);
+    y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
+  }
+  const double w = x1 - x0, h = y1 - y0;
+  const double l = o.max_edge_length, a = o.max_area;
+  if (l > 0 && l < std::hypot(w, h) && !normal(l * l))
+    invalid("maximum edge length " + shown(l) + " cannot be honoured: its square " +
+            (l * l > 1 ? "overflows" : "underflows") + " the range of doubles (rescale the input)");
+  if (a > 0 && a < w * h && !normal(2 * a))
+    invalid("maximum area " + shown(a) + " cannot be honoured: it " +
+            (a > 1 ? "overflows" : "underflows") + " the range of doubles (rescale the input)");
+  const double s = std::sin(o.min_angle * 3.14159265358979323846 / 180.0);
+  if (o.min_angle > 0 && !normal(s * s))
+    invalid("minimum angle " + shown(o.min_angle) +
+            " degrees is too small to be honoured (its sine squared underflows); 0 turns the "
+            "angle criterion off");
+}
+
+}  // namespace
+
 void validate_refine2d_input(const Pslg& in, const Refine2dOptions& o) {
   if (!(o.min_angle >= 0) || o.min_angle > 34.0)
     invalid("minimum angle " + std::to_string(o.min_angle) +
@@ -297,6 +335,7 @@ void validate_refine2d_input(const Pslg& in, const Refine2dOptions& o) {
   for (std::size_t i = i1 + 1; i1 < in.points.size() && i < in.points.size() && !area; ++i)
     area = pred::orient2d(&in.points[0].x, &in.points[i1].x, &in.points[i].x) != 0;
   if (!area) invalid("the input needs at least three points that are not collinear");
+  check_bounds_representable(in, o);
 }
 
 }  // namespace gdr

@@ -4,11 +4,15 @@
 //   3. convert back and measure what is left bad.
 #include <algorithm>
 #include <chrono>
+#include <climits>
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <new>
 #include <sstream>
 #include <string>
+
+#include <sys/resource.h>
 
 #include "exec/space.h"
 #include "gdr/refine2d.h"
@@ -63,18 +67,31 @@ r2d::Strategies strategies_from_environment() {
   return s;
 }
 
-// Rough output size, to let Auto choose the CPU for small jobs.
-std::size_t estimate_triangles(const r2d::HostMesh& m, const Refine2dOptions& o) {
-  double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
-  for (std::size_t i = 0; i < m.xy.size(); i += 2) {
-    x0 = std::min(x0, m.xy[i]), x1 = std::max(x1, m.xy[i]);
-    y0 = std::min(y0, m.xy[i + 1]), y1 = std::max(y1, m.xy[i + 1]);
+// Output size from the size bounds and the area of the domain (the CDT has lost its holes
+// and, with remove_exterior, its exterior). `least` is a lower bound: no triangle can be
+// larger than the bounds allow (with edges up to L, the equilateral one is the largest).
+// `typical` is about what refinement makes: it chooses the backend and sizes the cap.
+struct SizeEstimate {
+  double area = 0;
+  double least = 0;
+  double typical = 0;
+};
+
+SizeEstimate estimate_size(const r2d::HostMesh& m, const Refine2dOptions& o) {
+  SizeEstimate e;
+  for (int t = 0; t < m.triangles(); ++t) {
+    const double* a = &m.xy[2 * m.tv[3 * t]];
+    const double* b = &m.xy[2 * m.tv[3 * t + 1]];
+    const double* c = &m.xy[2 * m.tv[3 * t + 2]];
+    e.area += 0.5 * std::fabs((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]));
   }
-  const double area = (x1 - x0) * (y1 - y0);
-  double est = 4.0 * m.points();
-  if (o.max_edge_length > 0) est = std::max(est, 2.0 * area / (0.433 * o.max_edge_length * o.max_edge_length));
-  if (o.max_area > 0) est = std::max(est, 2.0 * area / o.max_area);
-  return est > 1e15 ? std::size_t(1e15) : static_cast<std::size_t>(est);
+  double bounds = 0;
+  if (o.max_edge_length > 0)
+    bounds = std::max(bounds, e.area / (0.433 * o.max_edge_length * o.max_edge_length));
+  if (o.max_area > 0) bounds = std::max(bounds, e.area / o.max_area);
+  e.least = std::max(static_cast<double>(m.triangles()), bounds);
+  e.typical = std::max(4.0 * m.points(), 2.0 * bounds);
+  return e;
 }
 
 // Smallest estimated output for which Auto takes the GPU. Measured on the H100 machine
@@ -89,17 +106,103 @@ std::size_t gpu_min_triangles(const Refine2dOptions& o) {
   return (gpu_warm() ? 300 : 40000) * threads;
 }
 
-// Above 30 degrees Delaunay refinement may never end: its termination proofs stop near
-// 20.7 degrees; in practice ours cascades on some generated contour maps at 34 degrees, and
-// CGAL Mesh_2 on the world map at 33.5. An automatic cap makes such a run stop and report.
-// The largest run measured that did finish needed 130 times its input points (the contour
-// map at 33.5 degrees).
-long long automatic_steiner_cap(int cdt_points, std::size_t estimated_triangles,
-                                const Refine2dOptions& o) {
-  if (o.max_steiner_points >= 0) return o.max_steiner_points;
-  if (o.min_angle <= 30.0) return -1;
-  return static_cast<long long>(
-      std::max({1000.0 * cdt_points, 1e6, 4.0 * static_cast<double>(estimated_triangles)}));
+// Memory per triangle: the engine's arrays peak at 75-78 bytes on the H100 (100 leaves room
+// for the lists of a busy iteration), on the device or, for the CPU backend, on the host; the
+// output (downloaded arrays and TriMesh) takes about 45 more on the host (50 with room).
+constexpr double kEngineBytesPerTriangle = 100;
+constexpr double kOutputBytesPerTriangle = 50;
+// Triangle edges are numbered 3t+e in ints, and dead triangles wait in the same arrays until
+// compaction (up to a tenth): live triangles stay well below INT_MAX / 3.
+constexpr double kMaxTriangles = 0.8 * (INT_MAX / 3);
+
+// The value of `key` ("MemAvailable:") in a /proc file of "key value kB" lines, in bytes;
+// 0 when absent.
+double proc_kib_field(const char* file, const std::string& key) {
+  std::ifstream in(file);
+  std::string k, rest;
+  double kib = 0;
+  while (in >> k >> kib && std::getline(in, rest))
+    if (k == key) return 1024 * kib;
+  return 0;
+}
+
+// Host memory this process may still take: MemAvailable, or less under a cgroup limit (a
+// container) or an address-space limit (ulimit -v). 0 when unknown.
+double available_host_bytes() {
+  double available = proc_kib_field("/proc/meminfo", "MemAvailable:");
+  const auto limit_to = [&](double left) {
+    left = std::max(0.0, left);
+    available = available > 0 ? std::min(available, left) : left;
+  };
+  std::ifstream limit_file("/sys/fs/cgroup/memory.max"), used_file("/sys/fs/cgroup/memory.current");
+  double limit = 0, used = 0;
+  if (limit_file >> limit && used_file >> used) limit_to(limit - used);  // "max" does not parse
+  struct rlimit as;
+  if (getrlimit(RLIMIT_AS, &as) == 0 && as.rlim_cur != RLIM_INFINITY)
+    limit_to(static_cast<double>(as.rlim_cur) - proc_kib_field("/proc/self/status", "VmSize:"));
+  return available;
+}
+
+// The most triangles a run on backend `b` can hold, by memory and by the engine's numbering.
+double triangle_capacity(Backend b) {
+  double capacity = kMaxTriangles;
+  const double host = available_host_bytes();
+  const double host_per_triangle =
+      kOutputBytesPerTriangle + (b == Backend::Gpu ? 0 : kEngineBytesPerTriangle);
+  if (host > 0) capacity = std::min(capacity, host / host_per_triangle);
+  if (b == Backend::Gpu && device_info().total_memory > 0)
+    capacity = std::min(capacity, device_info().total_memory / kEngineBytesPerTriangle);
+  return capacity;
+}
+
+std::string rounded(double v) {
+  std::ostringstream s;
+  s.precision(3);
+  s << v;
+  return s.str();
+}
+
+// Size bounds whose least output cannot fit are refused before any time is spent on them,
+// unless the caller's Steiner cap keeps the output small enough.
+void refuse_what_cannot_fit(const SizeEstimate& e, double capacity, int cdt_triangles,
+                            Backend b, const Refine2dOptions& o) {
+  double need = e.least;
+  if (o.max_steiner_points >= 0)
+    need = std::min(need, cdt_triangles + 2.0 * static_cast<double>(o.max_steiner_points));
+  if (need <= capacity) return;
+  std::string bounds;
+  if (o.max_edge_length > 0) bounds += "maximum edge length " + rounded(o.max_edge_length);
+  if (o.max_area > 0) bounds += (bounds.empty() ? "" : ", ") + ("maximum area " + rounded(o.max_area));
+  const std::string ask = "the size bounds (" + bounds + ") ask for at least " +
+                          rounded(std::min(need, 1e300)) + " triangles over the domain's area of " +
+                          rounded(e.area);
+  if (need > kMaxTriangles)
+    throw Error(Status::InvalidInput, ask + ", more than the " + rounded(kMaxTriangles) +
+                                          " that the engine can number: raise the bounds");
+  const double per_triangle =
+      b == Backend::Gpu ? kEngineBytesPerTriangle : kEngineBytesPerTriangle + kOutputBytesPerTriangle;
+  throw Error(Status::OutOfDeviceMemory,
+              ask + ", about " + rounded(need * per_triangle / 1e9) + " GB of " +
+                  (b == Backend::Gpu ? "device" : "host") + " memory at " + rounded(per_triangle) +
+                  " bytes per triangle, where this machine has room for " + rounded(capacity) +
+                  " triangles: raise the bounds, or set a Steiner point cap");
+}
+
+// Refinement stops cleanly at a Steiner point cap: the caller's, or an automatic one. Above
+// 30 degrees it may never end (the termination proofs stop near 20.7 degrees; ours cascades
+// on some generated contour maps at 34 degrees, CGAL Mesh_2 on the world map at 33.5), and
+// at any angle a thin domain (a needle triangle) can ask for more points than any machine
+// holds. The automatic cap is 1000 times the input points, at least 1M and at least 4 times
+// the triangles the size bounds ask for (the largest run measured that did finish needed
+// 130 times its input points: the contour map at 33.5 degrees), and within memory. No cap
+// goes beyond what the engine can number.
+long long steiner_cap(int cdt_points, const SizeEstimate& e, double capacity,
+                      const Refine2dOptions& o) {
+  const double numbered = kMaxTriangles / 2 - cdt_points;  // about 2 triangles per point
+  if (o.max_steiner_points >= 0)
+    return static_cast<long long>(std::min(static_cast<double>(o.max_steiner_points), numbered));
+  const double wanted = std::max({1000.0 * cdt_points, 1e6, 4.0 * e.typical});
+  return static_cast<long long>(std::max(0.0, std::min(wanted, capacity / 2 - cdt_points)));
 }
 
 }  // namespace
@@ -129,9 +232,10 @@ Refine2dResult refine_2d(const Pslg& input, const Refine2dOptions& options, cons
   const int cdt_points = mesh.points();
 
   const r2d::Criteria crit = make_criteria(options);
-  const std::size_t estimated_triangles = estimate_triangles(mesh, options);
-  st.backend_used =
-      resolve_backend(options.backend, estimated_triangles, gpu_min_triangles(options));
+  const SizeEstimate estimate = estimate_size(mesh, options);
+  st.backend_used = resolve_backend(options.backend,
+                                    static_cast<std::size_t>(std::min(estimate.typical, 1e15)),
+                                    gpu_min_triangles(options));
   if (st.backend_used == Backend::Gpu) st.device_name = device_info().name;
   else st.device_name = "CPU (" + std::to_string(cpu_threads()) + " OpenMP threads)";
 
@@ -139,9 +243,13 @@ Refine2dResult refine_2d(const Pslg& input, const Refine2dOptions& options, cons
   // subsegments and bad triangles the same way).
   r2d::EngineParams params;
   params.criteria = crit;
-  params.max_steiner = automatic_steiner_cap(cdt_points, estimated_triangles, options);
-  st.steiner_cap = params.max_steiner;
-  st.automatic_steiner_cap = options.max_steiner_points < 0 && params.max_steiner >= 0;
+  if (options.refine) {
+    const double capacity = triangle_capacity(st.backend_used);
+    refuse_what_cannot_fit(estimate, capacity, mesh.triangles(), st.backend_used, options);
+    params.max_steiner = steiner_cap(cdt_points, estimate, capacity, options);
+    st.steiner_cap = params.max_steiner;
+    st.automatic_steiner_cap = options.max_steiner_points < 0;
+  }
   params.strategies = strategies_from_environment();
   if (!options.refine) params.max_iterations = 0;
   Callbacks engine_cb = cb;
@@ -176,8 +284,8 @@ Refine2dResult refine_2d(const Pslg& input, const Refine2dOptions& options, cons
       cb.warning(st.automatic_steiner_cap
                      ? "refinement stopped at the automatic cap of " +
                            std::to_string(st.steiner_cap) +
-                           " Steiner points: above 30 degrees refinement can cascade without "
-                           "end; lower the minimum angle, or set a cap of your own"
+                           " Steiner points: the bounds ask for more here (a cascade above 30 "
+                           "degrees, a thin domain); relax them, or set a cap of your own"
                      : "refinement stopped at the Steiner point cap (" +
                            std::to_string(st.steiner_cap) + ")");
     if (er.stalled && cb.warning)

@@ -359,15 +359,19 @@ TEST_P(Refine2d, SteinerCapStopsCleanly) {
   EXPECT_GT(r.stats.bad_triangles, 0);
 }
 
-// Above 30 degrees refinement may not end, so unless a cap is set an automatic one applies:
-// on an input where our refinement cascades at 34 degrees (on the CPU path; the GPU's
-// rounding happens to steer clear), the run stops there cleanly with a valid mesh, or else
-// meets the bound.
-TEST_P(Refine2d, AboveThirtyDegreesAnAutomaticCapEndsACascade) {
+// Refinement may not end (above 30 degrees, or in a thin domain at any angle), so unless a
+// cap is set an automatic one applies: on an input where our refinement cascades at 34
+// degrees (on the CPU path; the GPU's rounding happens to steer clear), the run stops there
+// cleanly with a valid mesh, or else meets the bound.
+TEST_P(Refine2d, AnAutomaticCapEndsACascade) {
   const Pslg g = gdr::io::read_poly(std::string(GDR_DATA_DIR) + "/cascade34.poly");
   auto o = options();
-  o.min_angle = 30;
-  EXPECT_EQ(mesh(g, o).stats.steiner_cap, -1);  // no cap up to 30 degrees
+  for (double angle : {0.0, 20.0, 30.0}) {  // at every angle
+    o.min_angle = angle;
+    const auto r = mesh(g, o);
+    EXPECT_EQ(r.stats.steiner_cap, 1000000) << angle;
+    EXPECT_TRUE(r.stats.automatic_steiner_cap) << angle;
+  }
   o.min_angle = 33.8;
   auto r = mesh(g, o);
   EXPECT_EQ(r.stats.steiner_cap, 1000000);  // max(1000 x 54 points, 1M)
@@ -551,6 +555,49 @@ TEST_P(Refine2d, BadInputs) {
     EXPECT_EQ(r.mesh.points[i].y, kept[i].y) << i;
   }
   EXPECT_TRUE(gdr::validate_trimesh(r.mesh, &dup).valid);
+}
+
+// The kernels compare squared lengths, twice the area and sin^2 of the angle: a bound that
+// would underflow or overflow there is refused rather than silently ignored (a maximum edge
+// of 1e-200 used to mean no bound at all), unless no element could exceed it anyway.
+TEST_P(Refine2d, BoundsTheKernelsCannotHonourAreRefused) {
+  Pslg g;
+  add_loop(g, square(0, 0, 1, 1));
+  auto o = options();
+  std::string msg;
+  for (double edge : {1e-200, 1e-161}) {
+    o.max_edge_length = edge;
+    EXPECT_EQ(status_of(g, o, &msg), gdr::Status::InvalidInput) << edge;
+    EXPECT_NE(msg.find("maximum edge length"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("underflows"), std::string::npos) << msg;
+  }
+  o.max_edge_length = 1e200;  // longer than any edge can be: met by the CDT already
+  EXPECT_EQ(mesh(g, o).stats.bad_triangles, 0);
+  o.max_edge_length = 0;
+  o.min_angle = 1e-300;
+  EXPECT_EQ(status_of(g, o, &msg), gdr::Status::InvalidInput);
+  EXPECT_NE(msg.find("minimum angle"), std::string::npos) << msg;
+}
+
+// Size bounds whose mesh cannot be held are refused before refining, the estimate in the
+// message (gear.poly with a maximum area of 1e-9 took 8.2 GB in 141 s before it died); a
+// Steiner cap of the caller's own keeps such a run small, and then it goes ahead.
+TEST_P(Refine2d, SizeBoundsBeyondWhatFitsAreRefused) {
+  Pslg g;
+  add_loop(g, square(0, 0, 1, 1));
+  auto o = options();
+  o.max_area = 1e-9;
+  std::string msg;
+  EXPECT_EQ(status_of(g, o, &msg), gdr::Status::InvalidInput);
+  EXPECT_NE(msg.find("at least 1e+09 triangles"), std::string::npos) << msg;
+  o.max_edge_length = 1e-5;
+  o.max_area = 0;
+  EXPECT_EQ(status_of(g, o, &msg), gdr::Status::InvalidInput);
+  EXPECT_NE(msg.find("maximum edge length 1e-05"), std::string::npos) << msg;
+  o.max_steiner_points = 100;
+  const auto r = mesh(g, o);
+  EXPECT_TRUE(r.stats.steiner_cap_reached);
+  EXPECT_EQ(r.stats.steiner_points, 100);
 }
 
 TEST_P(Refine2d, AbortStopsTheRun) {
