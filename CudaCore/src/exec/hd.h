@@ -52,6 +52,14 @@ GDR_HD_INLINE int atomic_or(int* addr, int v) {
 #endif
 }
 
+GDR_HD_INLINE int atomic_and(int* addr, int v) {
+#if defined(__CUDA_ARCH__)
+  return atomicAnd(addr, v);
+#else
+  return __atomic_fetch_and(addr, v, __ATOMIC_RELAXED);
+#endif
+}
+
 // Compare-and-swap; returns the value found (== expected when the swap happened).
 GDR_HD_INLINE int atomic_cas(int* addr, int expected, int desired) {
 #if defined(__CUDA_ARCH__)

@@ -25,6 +25,9 @@ using exec::u64;
 // `start`; kFacetSplit: subface `sub` (face ek of `start`), p lies in it; kFreePoint: p lies
 // in tetrahedron `start`.
 enum : signed char { kDropped = -1, kSegmentSplit = 0, kFacetSplit = 1, kFreeSplit = 2 };
+// Candidate::ek of a free point that makes room for a split on a segment or facet (its
+// cavity was not star-shaped): it goes in even if it encroaches a subsegment or subface.
+enum : signed char { kMakeRoomPoint = 1 };
 
 struct Candidate {
   double p[3];
@@ -32,6 +35,7 @@ struct Candidate {
   int start;
   int sub;
   int a, b;
+  int origin;  // the bad tetrahedron this point would fix, or -1
   signed char kind;
   signed char ek;
 };
@@ -44,7 +48,8 @@ enum : int {
   kFailStar = 4,      // a cavity face does not see it strictly inside (not star-shaped)
   kFailDeferred = 5,  // its cavity was still growing (S5)
   kFailCap = 6,       // the Steiner cap
-  kFailReasons = 7,
+  kFailDelaunay = 7,  // two of its new tetrahedra would not be locally Delaunay (CheckCavity)
+  kFailReasons = 8,
 };
 
 struct PrioOf {
@@ -122,7 +127,7 @@ struct GrowCavity {
   // subsegment is split first (flagged for the next iteration). Points on segments are
   // always inserted.
   GDR_HD bool encroaches_subsegment(int t, const Candidate& c) const {
-    if (c.kind == kSegmentSplit) return false;
+    if (c.kind == kSegmentSplit || (c.kind == kFreeSplit && c.ek == kMakeRoomPoint)) return false;
     const int flags = m.tflag[t];
     if (!(flags & kSegBits)) return false;
     for (int e = 0; e < 6; ++e) {
@@ -153,11 +158,16 @@ struct GrowCavity {
       const int s = m.tsub[4 * t + f];
       if (s >= 0) {
         // A free point that would encroach a subface is not inserted: the subface first.
-        if (c.kind == kFreeSplit) {
+        if (c.kind == kFreeSplit && c.ek != kMakeRoomPoint) {
           const int* q = m.tv + 4 * t;
           if (in_diametral_ball(pt(m, q[face_corner(f, 0)]), pt(m, q[face_corner(f, 1)]),
                                 pt(m, q[face_corner(f, 2)]), c.p)) {
-            exec::atomic_or(&m.tflag[t], kSplitFace0 << f);
+            // A subface that is not split leaves the tetrahedron as it is.
+            if (m.sflag[s] & kSubNoSplit) {
+              if (c.origin >= 0) protect_tet(m.tflag, c.origin);
+            } else {
+              exec::atomic_or(&m.tflag[t], kSplitFace0 << f);
+            }
             failed[h.pt] = kFailEncroach;
             return n;
           }
@@ -310,8 +320,43 @@ struct MarkSubfaceFans {
   }
 };
 
-// Last exact checks before anything is written: every new tetrahedron must be positive, and
-// a split subface must have its tetrahedra in the cavity.
+// Around the edge xy of fan face f of cavity tetrahedron t (of point j), through the
+// cavity, to the next fan face at xy: the new tetrahedra on the two fan faces share the face
+// (x, y, p). Returns false when the walk ends on the domain boundary instead (xy bounds a
+// split boundary subface). `split` is the split subface crossed on the way (the face
+// (x, y, p) is then a new subface), or -1; `broken` reports a walk that found no end.
+struct FanNeighbour {
+  int u = -1, g = -1, split = -1;
+  bool broken = false;
+};
+
+GDR_HD_INLINE bool fan_neighbour(const TetView& m, int j, int t, int f, int x, int y, FanNeighbour& r) {
+  int u = t, g = f;
+  for (int guard = 0; guard < 4096; ++guard) {
+    const int g2 = other_face_at_edge(m, u, g, x, y);
+    const int kind = cavity_face(m, j, u, g2);
+    if (kind == kFaceFan) {
+      r.u = u;
+      r.g = g2;
+      return true;
+    }
+    if (kind == kFaceSplit) r.split = m.tsub[4 * u + g2];
+    const int nb = m.tn[4 * u + g2];
+    if (nb < 0) return false;  // the domain boundary: a split boundary subface
+    u = nb >> 2;
+    g = nb & 3;
+  }
+  r.broken = true;
+  return false;
+}
+
+// Last exact checks before anything is written: every new tetrahedron must be positive, a
+// split subface must have its tetrahedra in the cavity, and every face two new tetrahedra
+// share (unless it is a new subface) must be locally Delaunay. Bowyer-Watson guarantees the
+// last in a Delaunay tetrahedralization; in a constrained one near a subsegment that is
+// itself encroached it may fail (the constrained Delaunay tetrahedralization with p then
+// needs a tetrahedron without p, which a fan cannot give): such a point waits, and the
+// subsegment is split first.
 struct CheckCavity {
   TetView m;
   const Candidate* cand;
@@ -324,8 +369,29 @@ struct CheckCavity {
     const int t = h.elem;
     for (int f = 0; f < 4; ++f) {
       const int k = cavity_face(m, h.pt, t, f);
-      if (k == kFaceFan) {
-        if (!(face_orient(m, t, f, c.p) > 0)) failed[h.pt] = kFailStar;
+      if (k == kFaceFan && face_orient(m, t, f, c.p) > 0) {
+        const int* v = m.tv + 4 * t;
+        const int a = v[face_corner(f, 0)], b = v[face_corner(f, 1)], d = v[face_corner(f, 2)];
+        for (int e = 0; e < 3; ++e) {
+          const int x = e == 0 ? b : a, y = e == 2 ? b : d;  // the edge opposite corner e
+          FanNeighbour r;
+          if (!fan_neighbour(m, h.pt, t, f, x, y, r) || r.split >= 0) continue;
+          int w = -1;  // the other new tetrahedron's corner off the shared face
+          for (int q = 0; q < 3; ++q) {
+            const int z = m.tv[4 * r.u + face_corner(r.g, q)];
+            if (z != x && z != y) w = z;
+          }
+          if (pred::insphere(pt(m, a), pt(m, b), pt(m, d), c.p, pt(m, w)) > 0) {
+            failed[h.pt] = kFailDelaunay;
+            if (is_subseg(m, t, x, y))
+              exec::atomic_or(&m.tflag[t], kSplitEdge0 << edge_index(corner_of(m, t, x), corner_of(m, t, y)));
+          }
+        }
+      } else if (k == kFaceFan) {
+        // No star from p: the tetrahedron that hides p is split first (its circumsphere
+        // holds p, so smaller tetrahedra there make room), and p tries again later.
+        failed[h.pt] = kFailStar;
+        exec::atomic_or(&m.tflag[t], kMakeRoom);
       } else if (k == kFaceSplit) {
         const int nb = m.tn[4 * t + f];
         if (nb >= 0 && !((m.tflag[nb >> 2] & kInCavity) && m.mark[nb >> 2] == h.pt + 1))
@@ -508,43 +574,35 @@ struct LinkNew {
   // between the other two corners).
   GDR_HD void link_face(int j, int t, int f, int nt, int k) const {
     const int x = m.tv[4 * nt + (k + 1) % 3], y = m.tv[4 * nt + (k + 2) % 3];
-    int u = t, g = f, new_sub = -1;
-    for (int guard = 0; guard < 4096; ++guard) {
-      const int g2 = other_face_at_edge(m, u, g, x, y);
-      const int kind = cavity_face(m, j, u, g2);
-      if (kind == kFaceFan) {
-        const int other = m.aux[u] + fan_rank(m, j, u, g2);
-        // In the other new tetrahedron (corners of face g2, p) the face at xy is opposite
-        // the corner that is neither x nor y.
-        int ko = 0;
-        for (int q = 0; q < 3; ++q) {
-          const int v = m.tv[4 * u + face_corner(g2, q)];
-          if (v != x && v != y) ko = q;
-        }
-        m.tn[4 * nt + k] = 4 * other + ko;
-        set_subface(nt, k, new_sub);
-        return;
+    FanNeighbour r;
+    const bool inside = fan_neighbour(m, j, t, f, x, y, r);
+    int new_sub = -1;
+    if (r.split >= 0) {
+      int e = 0;  // the edge xy of the split subface
+      for (int q = 0; q < 3; ++q) {
+        const int v = m.sv[3 * r.split + q];
+        if (v != x && v != y) e = q;
       }
-      if (kind == kFaceSplit) {
-        const int s = m.tsub[4 * u + g2];
-        int e = 0;  // the edge xy of s
-        for (int q = 0; q < 3; ++q) {
-          const int v = m.sv[3 * s + q];
-          if (v != x && v != y) e = q;
-        }
-        new_sub = m.saux[s] + subfan_rank(m, s, e);
-      }
-      const int nb = m.tn[4 * u + g2];
-      if (nb < 0) {  // the domain boundary: a split boundary subface
-        m.tn[4 * nt + k] = -1;
-        set_subface(nt, k, new_sub);
-        if (new_sub < 0) *error = 1;
-        return;
-      }
-      u = nb >> 2;
-      g = nb & 3;
+      new_sub = m.saux[r.split] + subfan_rank(m, r.split, e);
     }
-    *error = 1;
+    if (r.broken || (!inside && new_sub < 0)) {
+      *error = 1;
+      return;
+    }
+    if (inside) {
+      const int other = m.aux[r.u] + fan_rank(m, j, r.u, r.g);
+      // In the other new tetrahedron (corners of face g, p) the face at xy is opposite the
+      // corner that is neither x nor y.
+      int ko = 0;
+      for (int q = 0; q < 3; ++q) {
+        const int v = m.tv[4 * r.u + face_corner(r.g, q)];
+        if (v != x && v != y) ko = q;
+      }
+      m.tn[4 * nt + k] = 4 * other + ko;
+    } else {
+      m.tn[4 * nt + k] = -1;
+    }
+    set_subface(nt, k, new_sub);
   }
 
   GDR_HD void set_subface(int nt, int k, int s) const {

@@ -32,13 +32,25 @@ enum : int {
   kSplitFace0 = 1 << 15,  // bits 15-18: the subface on face i must be split
   kCollectShift = 19,     // bits 19-29: the tetrahedron's own collect mask (engine)
   kCollectBits = 2047 << 19,
+  kProtected = 1 << 30,   // bad, but no point fixes it (its split was declined): not collected
+  // Split first: a cavity it belongs to could not be made star-shaped (cavity.h).
+  kMakeRoom = static_cast<int>(1u << 31),
 };
+
+// A bad tetrahedron that no point can fix is left as it is and reported.
+GDR_HD_INLINE void protect_tet(int* tflag, int t) {
+  exec::atomic_or(&tflag[t], kProtected);
+  exec::atomic_and(&tflag[t], ~kMakeRoom);
+}
 
 // Per-subface flag bits.
 enum : int {
   kSubDead = 1,
   kSubInCavity = 2,  // part of a winning subface cavity during insertion
   kSubFanEdge0 = 4,  // bits 2-4: edge e bounds that subface cavity (cavity.h)
+  kSubNoSplit = 32,  // its circumcentre lies outside its facet and encroaches no subsegment:
+                     // it is left as it is (TetGen does the same), and so are the bad
+                     // tetrahedra whose circumcentres it blocks
 };
 
 struct TetView {

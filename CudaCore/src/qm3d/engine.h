@@ -36,6 +36,9 @@ struct EngineParams {
   int max_iterations = 100000;
   Strategies strategies;
   bool check_links = false;  // tests: check every link of the mesh after each iteration
+  // Check every subsegment and subface of the input mesh for encroachment (kernels.h,
+  // static_collect_mask); off when refining a mesh that is already refined.
+  bool check_input_boundary = true;
 };
 
 struct EngineResult {
@@ -56,7 +59,8 @@ struct MeshResult {
   exec::HostVector<int> sv;              // 3 per subface
   exec::HostVector<int> sfacet;          // per subface
   exec::HostVector<int> subseg;          // 3 per subsegment: its two vertices and its segment
-  exec::HostVector<int> bad;             // tetrahedra left bad
+  exec::HostVector<int> bad;             // tetrahedra left bad: 2t, or 2t+1 when no point
+                                         // could fix it (its split was declined)
   int tets() const { return static_cast<int>(tv.size() / 4); }
   int points() const { return static_cast<int>(ptype.size()); }
 };
@@ -111,6 +115,10 @@ struct Engine {
   Buf<Candidate> cand_all, cand;  // all splitting points, then the filtered ones
   Buf<Tuple> tuples;
   bool allow_deferment = true;
+  // Livelock breaker: after an iteration that inserted almost none of its candidates, the
+  // next one ranks them at random, so that points that keep failing (a cavity that touches
+  // a failing higher one, a split that is refused) no longer block the same lower ones.
+  bool shuffle = false;
   long long dead_tets = 0, dead_subs = 0;  // since the last compaction
   int rounds = 0;                          // ExpandList rounds of the last cavity phase
   const bool trace = std::getenv("GDR_TRACE") != nullptr;
@@ -131,17 +139,18 @@ struct Engine {
     for (int iter = 0; iter < params.max_iterations; ++iter) {
       if (cb.abort && cb.abort()) throw Error(Status::Aborted, "refinement aborted by the caller");
       clock.restart();
-      const std::size_t nl = collect();                 // line 4
+      const std::size_t nl = collect(iter == 0 && params.check_input_boundary);  // line 4
       if (nl == 0) break;                               // line 10
       res.iterations = iter + 1;
       compute_splitting_points(nl, iter);               // line 6
       const std::size_t ns = filter(nl);                // line 7 (S1, S3)
       grow_cavities(ns);                                // line 8 (S2, S5)
       const long long won = verify_and_number(ns);      // line 8: filter dependent points
+      shuffle = !shuffle && won * 50 < static_cast<long long>(ns);
       if (won > 0) {
         insert(ns, won);                                // line 9
         idle = 0;
-      } else if (++idle >= 5) {
+      } else if (++idle >= 8) {
         res.stalled = true;
         break;
       }
@@ -152,7 +161,7 @@ struct Engine {
         std::fprintf(stderr,
                      "gdr-trace iter %d: tets %d, subfaces %d, points %d, elements %zu, "
                      "candidates %zu, won %lld, rounds %d, tuples %zu, MB %.1f (peak %.1f), "
-                     "lost/encroach/touch/star/defer/cap %s\n",
+                     "lost/encroach/touch/star/defer/cap/delaunay %s\n",
                      iter + 1, dm.ntet, dm.nsub, dm.npts, nl, ns, won, rounds, tuples.size(),
                      exec::memory_counter<Space>().current / 1048576.0,
                      exec::memory_counter<Space>().peak / 1048576.0, failure_counts().c_str());
@@ -167,26 +176,45 @@ struct Engine {
     res.peak_bytes = exec::memory_counter<Space>().peak - mem_base;
   }
 
-  // Trace only: why the points that did not go in failed (cavity.h kFail*).
+  // Trace only: why the points that did not go in failed (cavity.h kFail*), and per kind
+  // (segment / facet / free) the candidates and the winners.
   std::string failure_counts() const {
     std::vector<int> f(failed.size());
     failed.download(f.data(), f.size());
-    long long n[m3d::kFailReasons] = {};
-    for (int x : f) ++n[x >= 0 && x < m3d::kFailReasons ? x : 0];
+    std::vector<Candidate> c(cand.size());
+    cand.download(c.data(), c.size());
+    long long n[m3d::kFailReasons] = {}, kinds[3] = {}, wins[3] = {};
+    for (std::size_t j = 0; j < f.size(); ++j) {
+      ++n[f[j] >= 0 && f[j] < m3d::kFailReasons ? f[j] : 0];
+      if (c[j].kind >= 0 && c[j].kind < 3) {
+        ++kinds[c[j].kind];
+        wins[c[j].kind] += f[j] == 0;
+      }
+    }
     std::string s;
     for (int k = 1; k < m3d::kFailReasons; ++k) s += (k > 1 ? "/" : "") + std::to_string(n[k]);
+    s += ", seg/facet/free candidates " + std::to_string(kinds[0]) + "/" + std::to_string(kinds[1]) +
+         "/" + std::to_string(kinds[2]) + " won " + std::to_string(wins[0]) + "/" +
+         std::to_string(wins[1]) + "/" + std::to_string(wins[2]);
     return s;
   }
 
   // Line 4: encroached subsegments, encroached subfaces and bad tetrahedra in one list (S1,
   // S4). Each tetrahedron keeps an 11-bit mask in its flags and its entry count in aux; the
   // in-place scan of the counts places the entries (t*16 + slot).
-  std::size_t collect() {
-    Ops::for_each(dm.ntet, CollectMask{dm.view(), params.criteria});
+  std::size_t collect(bool all) {
+    Ops::for_each(dm.ntet, CollectMask{dm.view(), params.criteria, all});
     int* cnt = dm.aux.data();
     const std::size_t nl = static_cast<std::size_t>(Ops::exclusive_scan(cnt, cnt, dm.ntet));
     list.resize_discard(nl);
     if (nl) Ops::for_each(dm.ntet, ExpandElements{dm.view(), list.data()});
+    if (trace && nl) {
+      std::vector<int> l(nl);
+      list.download(l.data(), nl);
+      long long k[3] = {};
+      for (int e : l) ++k[(e & 15) >= kSlotEdge0 ? 0 : ((e & 15) >= kSlotFace0 ? 1 : 2)];
+      std::fprintf(stderr, "gdr-trace elements: subsegments %lld, subfaces %lld, tets %lld\n", k[0], k[1], k[2]);
+    }
     clock.template stop<Space>("collect");
     return nl;
   }
@@ -196,7 +224,7 @@ struct Engine {
     cand_all.resize_discard(nl);
     Ops::for_each(nl, ComputeSplittingPoints{dm.view(), params.criteria, list.data(), cand_all.data(),
                                              0x9e3779b9u * static_cast<unsigned>(iter + 1),
-                                             params.strategies.worst_first});
+                                             params.strategies.worst_first, shuffle});
     clock.template stop<Space>("split+locate");
   }
 
@@ -394,7 +422,7 @@ struct Engine {
     int* bad = list.data();
     Ops::for_each(dm.ntet, [=] GDR_HD(long long t) {
       const int next = t + 1 < mv.ntet ? cnt[t + 1] : static_cast<int>(nbad);
-      if (next != cnt[t]) bad[cnt[t]] = static_cast<int>(t);
+      if (next != cnt[t]) bad[cnt[t]] = 2 * static_cast<int>(t) + ((mv.tflag[t] & m3d::kProtected) != 0);
     });
     list.to_host(out.bad);
     dm.xyz.resize(3 * std::size_t(dm.npts));

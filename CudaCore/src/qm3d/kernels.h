@@ -95,14 +95,25 @@ GDR_HD_INLINE int classify_tet(const TetView& m, int t, const Criteria& c, const
 // rejected points since are added each time. A subface or subsegment is listed from every
 // tetrahedron that sees it encroached; the splitting points name one canonical tetrahedron so
 // the S3 filter keeps one.
+//
+// Which encroachments count follows TetGen, so that meshes come out as small as its: in the
+// initial CDT every subsegment and subface is checked against its apexes (`all`); later only
+// the subsegments and subfaces a boundary split creates (those at the new point, corner 3 of
+// its new tetrahedra), and any that a point to be inserted would encroach (rejection, in
+// GrowCavity). An old subsegment that a new point merely comes near is not split for it:
+// checking those too made every edge of a fine input surface split once (spot: 22k Steiner
+// points on segments against TetGen's 4.9k).
 enum : int { kSlotTet = 0, kSlotFace0 = 1, kSlotEdge0 = 5, kSlots = 11 };
 
-GDR_HD_INLINE int static_collect_mask(const TetView& m, const Criteria& c, int t) {
+GDR_HD_INLINE int static_collect_mask(const TetView& m, const Criteria& c, int t, bool all) {
   const TetShape s = tet_shape(m, t);
   int mask = classify_tet(m, t, c, s) != kGood ? 1 : 0;
   const int* v = m.tv + 4 * t;
+  const int newest = m.ptype[v[3]];
+  const bool boundary_split = newest == m3d::kSegmentPoint || newest == m3d::kFacetPoint;
+  if (!all && !boundary_split) return mask;
   for (int f = 0; f < 4; ++f) {
-    if (m.tsub[4 * t + f] < 0) continue;
+    if (m.tsub[4 * t + f] < 0 || (!all && f == 3)) continue;
     if (m3d::in_diametral_ball(pt(m, v[m3d::face_corner(f, 0)]), pt(m, v[m3d::face_corner(f, 1)]),
                                pt(m, v[m3d::face_corner(f, 2)]), pt(m, v[f])))
       mask |= 1 << (kSlotFace0 + f);
@@ -111,6 +122,7 @@ GDR_HD_INLINE int static_collect_mask(const TetView& m, const Criteria& c, int t
   for (int e = 0; e < 6; ++e) {
     if (!(flags & (m3d::kSeg0 << e))) continue;
     const int ca = m3d::edge_corner(e, 0), cb = m3d::edge_corner(e, 1);
+    if (!all && cb != 3) continue;
     for (int k = 0; k < 4; ++k) {
       if (k == ca || k == cb) continue;
       if (pred::in_diametral_sphere(pt(m, v[ca]), pt(m, v[cb]), pt(m, v[k])) > 0) {
@@ -122,11 +134,20 @@ GDR_HD_INLINE int static_collect_mask(const TetView& m, const Criteria& c, int t
   return mask;
 }
 
-GDR_HD_INLINE int collect_mask(int flags) {
+// The static mask, with the split requests since, less what is left as it is: protected
+// tetrahedra and subfaces whose split was declined.
+GDR_HD_INLINE int collect_mask(const TetView& m, int t) {
+  const int flags = m.tflag[t];
   if (flags & m3d::kDead) return 0;
-  const int split = ((flags / m3d::kSplitFace0) & 15) << kSlotFace0 |
-                    ((flags / m3d::kSplitEdge0) & 63) << kSlotEdge0;
-  return ((flags & m3d::kCollectBits) >> m3d::kCollectShift) | split;
+  const unsigned bits = static_cast<unsigned>(flags);  // kMakeRoom is the sign bit
+  int mask = static_cast<int>(((bits & m3d::kCollectBits) >> m3d::kCollectShift) |
+                              ((bits >> 15) & 15) << kSlotFace0 | ((bits >> 9) & 63) << kSlotEdge0);
+  if (flags & m3d::kMakeRoom) mask |= 1 << kSlotTet;
+  else if (flags & m3d::kProtected) mask &= ~(1 << kSlotTet);
+  for (int f = 0; f < 4; ++f)
+    if ((mask & (1 << (kSlotFace0 + f))) && (m.sflag[m.tsub[4 * t + f]] & m3d::kSubNoSplit))
+      mask &= ~(1 << (kSlotFace0 + f));
+  return mask;
 }
 
 GDR_HD_INLINE int popcount11(int x) {
@@ -139,14 +160,15 @@ GDR_HD_INLINE int popcount11(int x) {
 struct CollectMask {
   TetView m;
   Criteria c;
+  bool all;  // the first collect: every subsegment and subface is checked
   GDR_HD void operator()(long long i) const {
     const int t = static_cast<int>(i);
     int f = m.tflag[t];
     if ((f & m3d::kFresh) && !(f & m3d::kDead)) {
-      f = (f & ~(m3d::kFresh | m3d::kCollectBits)) | (static_collect_mask(m, c, t) << m3d::kCollectShift);
+      f = (f & ~(m3d::kFresh | m3d::kCollectBits)) | (static_collect_mask(m, c, t, all) << m3d::kCollectShift);
       m.tflag[t] = f;
     }
-    m.aux[t] = popcount11(collect_mask(f));
+    m.aux[t] = popcount11(collect_mask(m, t));
   }
 };
 
@@ -156,7 +178,7 @@ struct ExpandElements {
   int* list;
   GDR_HD void operator()(long long i) const {
     const int t = static_cast<int>(i);
-    const int mask = collect_mask(m.tflag[t]);
+    const int mask = collect_mask(m, t);
     int o = m.aux[t];
     for (int k = 0; k < kSlots; ++k)
       if (mask & (1 << k)) list[o++] = 16 * t + k;
@@ -218,6 +240,7 @@ GDR_HD_INLINE void make_segment_candidate(const TetView& m, int t, int e, unsign
   out.a = a;
   out.b = b;
   out.sub = -1;
+  out.origin = -1;
   out.kind = m3d::kSegmentSplit;
   out.prio = exec::make_priority(kClassSegment, size_class(m3d::dist2(pt(m, a), pt(m, b))), id);
   // A split point that rounds onto an endpoint would duplicate it: leave that subsegment.
@@ -229,10 +252,12 @@ GDR_HD_INLINE void make_segment_candidate(const TetView& m, int t, int e, unsign
 }
 
 // Splitting point of subface s: its circumcentre, located by walking in its facet. A walk
-// that must cross a subsegment splits that subsegment instead (the circumcentre would
-// encroach it, or lie outside the facet).
+// that must cross a subsegment splits that subsegment instead when the circumcentre
+// encroaches it; otherwise the circumcentre lies outside the facet and the subface is left
+// as it is (kSubNoSplit), as TetGen does, and so is the bad tetrahedron `origin` (if any)
+// that asked for it.
 GDR_HD_INLINE void make_subface_candidate(const TetView& m, int s, unsigned id, int step_limit,
-                                          Candidate& out) {
+                                          int origin, Candidate& out) {
   out.kind = m3d::kDropped;
   const int* sv = m.sv + 3 * s;
   double p[3];
@@ -262,14 +287,20 @@ GDR_HD_INLINE void make_subface_candidate(const TetView& m, int s, unsigned id, 
       out.start = t2 < t ? t2 : t;  // canonical: the lesser tetrahedron beside it
       out.ek = -1;
       out.a = out.b = -1;
+      out.origin = origin;
       out.prio = exec::make_priority(kClassSubface, size_class(r2), id);
       return;
     }
     const int x = v[(exit + 1) % 3], y = v[(exit + 2) % 3];
     if (m3d::is_subseg(m, t, x, y)) {
-      const int e = m3d::edge_index(m3d::corner_of(m, t, x), m3d::corner_of(m, t, y));
-      exec::atomic_or(&m.tflag[t], m3d::kSplitEdge0 << e);
-      make_segment_candidate(m, t, e, id, out);
+      if (pred::in_diametral_sphere(pt(m, x), pt(m, y), p) > 0) {
+        const int e = m3d::edge_index(m3d::corner_of(m, t, x), m3d::corner_of(m, t, y));
+        exec::atomic_or(&m.tflag[t], m3d::kSplitEdge0 << e);
+        make_segment_candidate(m, t, e, id, out);
+      } else {
+        exec::atomic_or(&m.sflag[s], m3d::kSubNoSplit);
+        if (origin >= 0) m3d::protect_tet(m.tflag, origin);
+      }
       return;
     }
     u = m3d::subface_across(m, u, x, y);
@@ -284,7 +315,12 @@ struct ComputeSplittingPoints {
   Candidate* out;
   unsigned salt;     // changes every iteration
   bool worst_first;  // shape-bad tetrahedra by radius-edge ratio; false: all larger first
+  bool shuffle;      // random priorities, for an iteration after one that made no headway
   GDR_HD void operator()(long long j) const {
+    compute(j);
+    if (shuffle) out[j].prio = exec::make_priority(0, 0.0f, exec::priority_id(out[j].prio));
+  }
+  GDR_HD void compute(long long j) const {
     const int e = list[j];
     const int t = e >> 4, slot = e & 15;
     Candidate& cand = out[j];
@@ -294,7 +330,7 @@ struct ComputeSplittingPoints {
       return;
     }
     if (slot >= kSlotFace0) {
-      make_subface_candidate(m, m.tsub[4 * t + slot - kSlotFace0], id, c.step_limit, cand);
+      make_subface_candidate(m, m.tsub[4 * t + slot - kSlotFace0], id, c.step_limit, -1, cand);
       return;
     }
     // A bad tetrahedron: its circumcentre, located by walking from it. A walk that meets a
@@ -317,16 +353,28 @@ struct ComputeSplittingPoints {
         cand.sub = -1;
         cand.ek = -1;
         cand.a = cand.b = -1;
-        const bool too_big = classify_tet(m, t, c, s) == kTooBig;
-        cand.prio = too_big || !worst_first
-                        ? exec::make_priority(kClassTooBig, size_class(s.volume6), id)
-                        : exec::make_priority(kClassShape, static_cast<float>(fmin(s.r2 / s.lmin2, 1e38)), id);
+        cand.origin = t;
+        const int klass = classify_tet(m, t, c, s);
+        if (klass == kGood || (m.tflag[t] & m3d::kMakeRoom)) {
+          // Room for a point on a segment or facet: first, and even if it comes near a
+          // subsegment or subface (that one waits for it).
+          cand.prio = exec::make_priority(kClassSegment, 1e38f, id);
+          cand.ek = m3d::kMakeRoomPoint;
+        }
+        else if (klass == kTooBig || !worst_first)
+          cand.prio = exec::make_priority(kClassTooBig, size_class(s.volume6), id);
+        else
+          cand.prio = exec::make_priority(kClassShape, static_cast<float>(fmin(s.r2 / s.lmin2, 1e38)), id);
         return;
       }
       const int sub = m.tsub[4 * u + exit];
       if (sub >= 0) {
+        if (m.sflag[sub] & m3d::kSubNoSplit) {  // the circumcentre lies beyond a subface left as it is
+          m3d::protect_tet(m.tflag, t);
+          return;
+        }
         exec::atomic_or(&m.tflag[u], m3d::kSplitFace0 << exit);
-        make_subface_candidate(m, sub, id, c.step_limit, cand);
+        make_subface_candidate(m, sub, id, c.step_limit, t, cand);
         return;
       }
       u = m.tn[4 * u + exit] >> 2;

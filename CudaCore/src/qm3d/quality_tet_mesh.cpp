@@ -247,7 +247,7 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
   result.max_dihedral.resize(nt);
   result.volume.resize(nt);
   result.is_bad.assign(nt, 0);
-  for (const int t : out.bad) result.is_bad[t] = 1;
+  for (const int code : out.bad) result.is_bad[code >> 1] = 1 + (code & 1);
   result.dihedral_histogram.assign(180, 0);
   double total = 0, bad_volume = 0, min_d = 180, max_d = 0, max_re = 0;
 #pragma omp parallel
@@ -285,6 +285,7 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
   st.output_subfaces = static_cast<long long>(nsf);
   st.steiner_points = np - static_cast<long long>(plc.points.size());
   st.bad_tets = static_cast<long long>(out.bad.size());
+  for (const int code : out.bad) st.protected_bad_tets += code & 1;
   st.bad_volume_percent = total > 0 ? 100.0 * bad_volume / total : 0.0;
   st.volume = total;
   st.min_dihedral_deg = nt ? min_d : 0;
