@@ -382,9 +382,16 @@ struct CheckCavity {
             if (z != x && z != y) w = z;
           }
           if (pred::insphere(pt(m, a), pt(m, b), pt(m, d), c.p, pt(m, w)) > 0) {
+            // Something must change before p can go in: the subsegment is split, or else the
+            // tetrahedron is (for a point on a segment or facet), or the bad tetrahedron
+            // asking for p is left as it is.
             failed[h.pt] = kFailDelaunay;
             if (is_subseg(m, t, x, y))
               exec::atomic_or(&m.tflag[t], kSplitEdge0 << edge_index(corner_of(m, t, x), corner_of(m, t, y)));
+            else if (c.kind != kFreeSplit)
+              exec::atomic_or(&m.tflag[t], kMakeRoom);
+            else if (c.origin >= 0)
+              protect_tet(m.tflag, c.origin);
           }
         }
       } else if (k == kFaceFan) {

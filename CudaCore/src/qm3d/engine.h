@@ -116,9 +116,10 @@ struct Engine {
   Buf<Tuple> tuples;
   bool allow_deferment = true;
   // Livelock breaker: after an iteration that inserted almost none of its candidates, the
-  // next one ranks them at random, so that points that keep failing (a cavity that touches
-  // a failing higher one, a split that is refused) no longer block the same lower ones.
-  bool shuffle = false;
+  // next one ranks them at random within their class (segments, facets, tetrahedra) and
+  // defers no cavity, so that points that keep failing (a cavity that touches a failing
+  // higher one, a split that must wait) no longer block the same lower ones.
+  bool stagnant = false;
   long long dead_tets = 0, dead_subs = 0;  // since the last compaction
   int rounds = 0;                          // ExpandList rounds of the last cavity phase
   const bool trace = std::getenv("GDR_TRACE") != nullptr;
@@ -146,7 +147,7 @@ struct Engine {
       const std::size_t ns = filter(nl);                // line 7 (S1, S3)
       grow_cavities(ns);                                // line 8 (S2, S5)
       const long long won = verify_and_number(ns);      // line 8: filter dependent points
-      shuffle = !shuffle && won * 50 < static_cast<long long>(ns);
+      stagnant = !stagnant && won * 50 < static_cast<long long>(ns);
       if (won > 0) {
         insert(ns, won);                                // line 9
         idle = 0;
@@ -224,7 +225,7 @@ struct Engine {
     cand_all.resize_discard(nl);
     Ops::for_each(nl, ComputeSplittingPoints{dm.view(), params.criteria, list.data(), cand_all.data(),
                                              0x9e3779b9u * static_cast<unsigned>(iter + 1),
-                                             params.strategies.worst_first, shuffle});
+                                             params.strategies.worst_first, stagnant});
     clock.template stop<Space>("split+locate");
   }
 
@@ -274,7 +275,7 @@ struct Engine {
                   : Tuple{static_cast<int>(j), c.start, m3d::kForceIn};
     });
     exec::ExpandListLimits lim;
-    if (allow_deferment && params.strategies.deferment) {
+    if (allow_deferment && !stagnant && params.strategies.deferment) {
       lim.defer_after_rounds = 16;
       lim.defer_below = ns / 64 + 32;
     }

@@ -315,10 +315,11 @@ struct ComputeSplittingPoints {
   Candidate* out;
   unsigned salt;     // changes every iteration
   bool worst_first;  // shape-bad tetrahedra by radius-edge ratio; false: all larger first
-  bool shuffle;      // random priorities, for an iteration after one that made no headway
+  bool shuffle;      // random order within each class, after an iteration without headway
   GDR_HD void operator()(long long j) const {
     compute(j);
-    if (shuffle) out[j].prio = exec::make_priority(0, 0.0f, exec::priority_id(out[j].prio));
+    const u64 p = out[j].prio;
+    if (shuffle) out[j].prio = exec::make_priority(unsigned(p >> 62), 0.0f, exec::priority_id(p));
   }
   GDR_HD void compute(long long j) const {
     const int e = list[j];
