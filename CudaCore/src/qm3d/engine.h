@@ -126,6 +126,7 @@ struct Engine {
 
   // counters: [0] broken link found while remeshing, [1] tetrahedra killed, [2] subfaces killed
   enum { kError = 0, kKilledTets = 1, kKilledSubs = 2, kCounters = 3 };
+  static constexpr int kClaimRounds = 8;  // claim rounds per iteration (grow_cavities)
 
   Engine(const EngineParams& p, const Callbacks& c) : params(p), cb(c) {}
 
@@ -145,8 +146,8 @@ struct Engine {
       res.iterations = iter + 1;
       compute_splitting_points(nl, iter);               // line 6
       const std::size_t ns = filter(nl);                // line 7 (S1, S3)
-      grow_cavities(ns);                                // line 8 (S2, S5)
-      const long long won = verify_and_number(ns);      // line 8: filter dependent points
+      grow_cavities(ns);                                // line 8 (S2, S3, S5)
+      const long long won = verify_and_number(ns);
       stagnant = !stagnant && won * 50 < static_cast<long long>(ns);
       if (won > 0) {
         insert(ns, won);                                // line 9
@@ -261,52 +262,107 @@ struct Engine {
   }
 
   // Line 8, growing (S2, S5): cavities by ExpandList from the tetrahedron holding the point,
-  // or, for a point on a facet, from the subface holding it. Stragglers are deferred.
+  // or, for a point on a facet, from the subface holding it; stragglers are deferred. Then the
+  // Delaunay-independent, star-shaped cavities are kept (verify_round). In further rounds the
+  // points that only lost a claim grow again, with the winners' elements reserved (their
+  // priority raised above all) and the failed points' claims released: a high point that
+  // fails for a reason of its own (a cavity that is not star-shaped, a subsegment it must
+  // wait for) no longer blocks every lower point around it for the whole iteration.
   void grow_cavities(std::size_t ns) {
     failed.resize_discard(ns);
     failed.zero();
-    tuples.resize_discard(ns);
-    const Candidate* cs = cand.data();
-    Tuple* tp = tuples.data();
-    Ops::for_each(ns, [=] GDR_HD(long long j) {
-      const Candidate& c = cs[j];
-      tp[j] = c.kind == m3d::kFacetSplit
-                  ? Tuple{static_cast<int>(j), c.sub, m3d::kSubTuple | m3d::kForceIn}
-                  : Tuple{static_cast<int>(j), c.start, m3d::kForceIn};
-    });
     exec::ExpandListLimits lim;
     if (allow_deferment && !stagnant && params.strategies.deferment) {
       lim.defer_after_rounds = 16;
       lim.defer_below = ns / 64 + 32;
     }
     lim.block_rounds = params.strategies.block_rounds;
-    const exec::ExpandListResult er = exec::expand_list<Space, m3d::GrowCavity::K>(
-        tuples, ns, m3d::GrowCavity{dm.view(), cand.data(), failed.data()}, lim);
+    point_id.resize_discard(ns);
+    int* all = point_id.data();  // scratch here: the candidates that grow
+    Ops::for_each(ns, [=] GDR_HD(long long j) { all[j] = static_cast<int>(j); });
+    const exec::ExpandListResult er = grow(tuples, all, ns, lim);
     // Deferred cavities must finish next time, or big ones would block their neighbourhood
     // forever. Points whose cavity is still growing give up this iteration.
     allow_deferment = !er.deferred();
     rounds = er.rounds;
+    verify_round(tuples);
+    clock.template stop<Space>("cavity");
+    int* f = failed.data();
+    Candidate* cs = cand.data();
+    for (int round = 1; round < kClaimRounds; ++round) {
+      const std::size_t nlost = exec::compact_indices<Space>(
+          ns, [=] GDR_HD(long long j) { return f[j] == m3d::kFailLost; }, list, count);
+      if (nlost == 0) break;
+      // Release the claims of the points that failed, retire the losers' tuples, reserve the
+      // winners' elements.
+      const m3d::TetView mv = dm.view();
+      Tuple* tw = tuples.data();
+      Ops::for_each(tuples.size(), [=] GDR_HD(long long i) {
+        Tuple& h = tw[i];
+        if (!f[h.pt] || m3d::result_of(h) != m3d::kCavity) return;
+        int* slot = m3d::is_sub_tuple(h) ? &mv.smark[h.elem] : &mv.mark[h.elem];
+        if (*slot == h.pt + 1) *slot = 0;
+        if (f[h.pt] == m3d::kFailLost) m3d::set_result(h, m3d::kStale);
+      });
+      Ops::for_each(ns, [=] GDR_HD(long long j) {
+        if (!f[j]) cs[j].prio = ~0ull;
+      });
+      const int* lost = list.data();
+      Ops::for_each(nlost, [=] GDR_HD(long long k) { f[lost[k]] = 0; });
+      Buf<Tuple> more;
+      grow(more, lost, nlost, exec::ExpandListLimits{});
+      verify_round(more);
+      const std::size_t before = tuples.size();
+      tuples.resize(before + more.size());
+      Ops::copy_d2d(tuples.data() + before, more.data(), more.size() * sizeof(Tuple));
+      clock.template stop<Space>("cavity");
+      const std::size_t again = exec::compact_indices<Space>(
+          nlost, [=] GDR_HD(long long k) { return f[lost[k]] == m3d::kFailLost; }, count2, count);
+      if (again == nlost) break;  // nobody won or failed on its own: the next round is the same
+    }
+  }
+
+  // Seeds and grows the cavities of the candidates `which[0..n)` into H.
+  exec::ExpandListResult grow(Buf<Tuple>& H, const int* which, std::size_t n,
+                              const exec::ExpandListLimits& lim) {
+    H.resize_discard(n);
+    const Candidate* cs = cand.data();
+    Tuple* tp = H.data();
+    Ops::for_each(n, [=] GDR_HD(long long k) {
+      const int j = which[k];
+      const Candidate& c = cs[j];
+      tp[k] = c.kind == m3d::kFacetSplit ? Tuple{j, c.sub, m3d::kSubTuple | m3d::kForceIn}
+                                         : Tuple{j, c.start, m3d::kForceIn};
+    });
+    const exec::ExpandListResult er = exec::expand_list<Space, m3d::GrowCavity::K>(
+        H, n, m3d::GrowCavity{dm.view(), cand.data(), failed.data()}, lim);
     if (er.deferred()) {
-      Tuple* pend = tuples.data() + er.pending_begin;
+      Tuple* pend = H.data() + er.pending_begin;
       int* f = failed.data();
       Ops::for_each(er.size - er.pending_begin,
                     [=] GDR_HD(long long i) { f[pend[i].pt] = m3d::kFailDeferred; });
     }
-    tuples.resize(er.size);
-    clock.template stop<Space>("cavity");
+    H.resize(er.size);
+    return er;
   }
 
-  // Line 8, filtering: surviving marks and exact checks decide the winners (Delaunay
-  // independent, star-shaped cavities); they get vertex numbers. The Steiner cap may drop any
-  // of them: a dropped point's cavity stays as it was. Returns how many won.
+  // Surviving marks and exact checks decide the winners among the tuples of H: claims kept,
+  // touching cavities Delaunay across their shared faces, star-shaped, new faces Delaunay.
+  void verify_round(Buf<Tuple>& H) {
+    const std::size_t nt = H.size();
+    const m3d::TetView mv = dm.view();
+    Ops::for_each(nt, m3d::VerifyClaims{mv, cand.data(), H.data(), failed.data(),
+                                        params.strategies.touching});
+    Ops::for_each(nt, m3d::SetInCavity{mv, H.data(), failed.data(), 1});
+    Ops::for_each(nt, m3d::CheckCavity{mv, cand.data(), H.data(), failed.data()});
+    Ops::for_each(nt, m3d::SetInCavity{mv, H.data(), failed.data(), 0});
+  }
+
+  // Line 8, filtering done: the winners get vertex numbers. The Steiner cap may drop any of
+  // them: a dropped point's cavity stays as it was. Returns how many won.
   long long verify_and_number(std::size_t ns) {
     const std::size_t nt = tuples.size();
     const m3d::TetView mv = dm.view();
-    Ops::for_each(nt, m3d::VerifyClaims{mv, cand.data(), tuples.data(), failed.data(),
-                                        params.strategies.touching});
-    Ops::for_each(nt, m3d::SetInCavity{mv, tuples.data(), failed.data(), 1});
-    Ops::for_each(nt, m3d::CheckCavity{mv, cand.data(), tuples.data(), failed.data()});
-    Ops::for_each(nt, m3d::SetInCavity{mv, tuples.data(), failed.data(), 0});
     point_id.resize_discard(ns);
     const int* fc = failed.data();
     int* pid = point_id.data();

@@ -376,6 +376,9 @@ struct ComputeSplittingPoints {
         }
         exec::atomic_or(&m.tflag[u], m3d::kSplitFace0 << exit);
         make_subface_candidate(m, sub, id, c.step_limit, t, cand);
+        // Making room: the subface in the way goes first too.
+        if ((m.tflag[t] & m3d::kMakeRoom) && cand.kind >= 0)
+          cand.prio = exec::make_priority(kClassSegment, 1e38f, id);
         return;
       }
       u = m.tn[4 * u + exit] >> 2;
