@@ -1,27 +1,40 @@
 #include "vtkGDRConversion.h"
 
 #include "vtkCellArray.h"
+#include "vtkCellCenters.h"
 #include "vtkCellData.h"
+#include "vtkCellType.h"
+#include "vtkConnectivityFilter.h"
 #include "vtkDataSet.h"
+#include "vtkDataSetSurfaceFilter.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkIdFilter.h"
+#include "vtkIdList.h"
 #include "vtkIdTypeArray.h"
 #include "vtkIntArray.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkPolygon.h"
 #include "vtkStringArray.h"
 #include "vtkTable.h"
+#include "vtkThreshold.h"
 #include "vtkUnsignedCharArray.h"
+#include "vtkUnstructuredGrid.h"
 
 #include "gdr/backend.h"
+#include "gdr/error.h"
 #include "gdr/validate.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <set>
 #include <sstream>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -268,18 +281,7 @@ void vtkGDRConversion::AddTriangleQuality(
 //------------------------------------------------------------------------------
 void vtkGDRConversion::Histogram(vtkDataArray* values, int upper, vtkTable* table)
 {
-  table->Initialize();
-  vtkNew<vtkDoubleArray> centers;
-  vtkNew<vtkIdTypeArray> counts;
-  centers->SetName("bin_extents");
-  counts->SetName("bin_values");
-  centers->SetNumberOfValues(upper);
-  counts->SetNumberOfValues(upper);
-  for (int i = 0; i < upper; ++i)
-  {
-    centers->SetValue(i, i + 0.5);
-    counts->SetValue(i, 0);
-  }
+  std::vector<long long> counts(upper, 0);
   if (values)
   {
     for (vtkIdType i = 0; i < values->GetNumberOfTuples(); ++i)
@@ -289,12 +291,31 @@ void vtkGDRConversion::Histogram(vtkDataArray* values, int upper, vtkTable* tabl
       {
         continue;
       }
-      const int bin = std::min(upper - 1, std::max(0, static_cast<int>(std::floor(v))));
-      counts->SetValue(bin, counts->GetValue(bin) + 1);
+      ++counts[std::min(upper - 1, std::max(0, static_cast<int>(std::floor(v))))];
     }
   }
+  vtkGDRConversion::HistogramTable(counts, "bin_values", table);
+}
+
+//------------------------------------------------------------------------------
+void vtkGDRConversion::HistogramTable(
+  const std::vector<long long>& counts, const char* countName, vtkTable* table)
+{
+  table->Initialize();
+  const vtkIdType nbins = static_cast<vtkIdType>(counts.size());
+  vtkNew<vtkDoubleArray> centers;
+  vtkNew<vtkIdTypeArray> values;
+  centers->SetName("bin_extents");
+  values->SetName(countName);
+  centers->SetNumberOfValues(nbins);
+  values->SetNumberOfValues(nbins);
+  for (vtkIdType i = 0; i < nbins; ++i)
+  {
+    centers->SetValue(i, i + 0.5);
+    values->SetValue(i, static_cast<vtkIdType>(counts[i]));
+  }
   table->AddColumn(centers);
-  table->AddColumn(counts);
+  table->AddColumn(values);
 }
 
 //------------------------------------------------------------------------------
@@ -309,9 +330,10 @@ void AddValue(vtkFieldData* fd, const char* name, ValueT value)
   array->SetValue(0, value);
   fd->AddArray(array);
 }
-}
 
-void vtkGDRConversion::AddStats(const gdr::Refine2dStats& stats, vtkFieldData* fd)
+// The statistics both meshers report, under the same names.
+template <typename Stats>
+void AddRunStats(const Stats& stats, vtkFieldData* fd)
 {
   AddValue<vtkStringArray>(fd, "Backend", gdr::to_string(stats.backend_used));
   AddValue<vtkStringArray>(fd, "DeviceName", stats.device_name);
@@ -321,12 +343,9 @@ void vtkGDRConversion::AddStats(const gdr::Refine2dStats& stats, vtkFieldData* f
   AddValue<vtkIdTypeArray>(
     fd, "DuplicatePointsMerged", static_cast<vtkIdType>(stats.duplicate_points_merged));
   AddValue<vtkIdTypeArray>(fd, "SteinerPoints", static_cast<vtkIdType>(stats.steiner_points));
-  AddValue<vtkIdTypeArray>(fd, "BadTriangles", static_cast<vtkIdType>(stats.bad_triangles));
-  AddValue<vtkDoubleArray>(fd, "BadAreaPercent", stats.bad_area_percent);
   AddValue<vtkIdTypeArray>(fd, "SteinerCap", static_cast<vtkIdType>(stats.steiner_cap));
   AddValue<vtkIntArray>(fd, "SteinerCapReached", stats.steiner_cap_reached ? 1 : 0);
   AddValue<vtkIntArray>(fd, "Stalled", stats.stalled ? 1 : 0);
-  AddValue<vtkDoubleArray>(fd, "MinimumAngleReached", stats.min_angle_deg);
   AddValue<vtkDoubleArray>(fd, "InputSeconds", stats.input_seconds);
   AddValue<vtkDoubleArray>(fd, "CDTSeconds", stats.cdt_seconds);
   AddValue<vtkDoubleArray>(fd, "RefineSeconds", stats.refine_seconds);
@@ -346,4 +365,374 @@ void vtkGDRConversion::AddStats(const gdr::Refine2dStats& stats, vtkFieldData* f
   }
   fd->AddArray(names);
   fd->AddArray(seconds);
+}
+}
+
+void vtkGDRConversion::AddStats(const gdr::Refine2dStats& stats, vtkFieldData* fd)
+{
+  AddRunStats(stats, fd);
+  AddValue<vtkIdTypeArray>(fd, "BadTriangles", static_cast<vtkIdType>(stats.bad_triangles));
+  AddValue<vtkDoubleArray>(fd, "BadAreaPercent", stats.bad_area_percent);
+  AddValue<vtkDoubleArray>(fd, "MinimumAngleReached", stats.min_angle_deg);
+}
+
+//------------------------------------------------------------------------------
+void vtkGDRConversion::AddStats(const gdr::QualityTetStats& stats, vtkFieldData* fd)
+{
+  AddRunStats(stats, fd);
+  AddValue<vtkIdTypeArray>(fd, "InputTriangles", static_cast<vtkIdType>(stats.input_triangles));
+  AddValue<vtkIdTypeArray>(fd, "InputFacets", static_cast<vtkIdType>(stats.input_facets));
+  AddValue<vtkIdTypeArray>(
+    fd, "DuplicateTrianglesMerged", static_cast<vtkIdType>(stats.duplicate_triangles_merged));
+  AddValue<vtkIdTypeArray>(
+    fd, "CDTSteinerPoints", static_cast<vtkIdType>(stats.cdt_steiner_points));
+  AddValue<vtkIdTypeArray>(fd, "BadTetrahedra", static_cast<vtkIdType>(stats.bad_tets));
+  AddValue<vtkIdTypeArray>(
+    fd, "ProtectedBadTetrahedra", static_cast<vtkIdType>(stats.protected_bad_tets));
+  AddValue<vtkDoubleArray>(fd, "BadVolumePercent", stats.bad_volume_percent);
+  AddValue<vtkDoubleArray>(fd, "MinimumDihedralAngleReached", stats.min_dihedral_deg);
+  AddValue<vtkDoubleArray>(fd, "MaximumDihedralAngleReached", stats.max_dihedral_deg);
+  AddValue<vtkDoubleArray>(fd, "MaximumRadiusEdgeRatioReached", stats.max_radius_edge);
+  AddValue<vtkDoubleArray>(fd, "Volume", stats.volume);
+  AddValue<vtkDoubleArray>(fd, "InputVolume", stats.input_volume);
+}
+
+//------------------------------------------------------------------------------
+namespace
+{
+// Collects facets into a gdr::Surface over the ids of `points`. With `allPoints`, every point
+// is taken in order, so that the engine's messages name the input's own point ids; else
+// points are taken on first use.
+class SurfaceBuilder
+{
+public:
+  SurfaceBuilder(vtkPoints* points, gdr::Surface& surface, bool allPoints)
+    : Points(points)
+    , Surface(surface)
+    , Index(points->GetNumberOfPoints(), -1)
+  {
+    for (vtkIdType id = 0; allPoints && id < points->GetNumberOfPoints(); ++id)
+    {
+      this->Use(id);
+    }
+  }
+
+  // One facet; a polygon with more than three corners is triangulated by vtkPolygon.
+  void AddPolygon(vtkIdType npts, const vtkIdType* ids, int facet)
+  {
+    if (npts < 3)
+    {
+      return;
+    }
+    if (npts == 3)
+    {
+      this->AddTriangle(ids[0], ids[1], ids[2], facet);
+      return;
+    }
+    this->Polygon->Initialize(static_cast<int>(npts), ids, this->Points);
+    if (!this->Polygon->Triangulate(this->Corners) || this->Corners->GetNumberOfIds() == 0)
+    {
+      throw gdr::Error(gdr::Status::InvalidInput,
+        "polygon " + std::to_string(facet) + " (" + std::to_string(npts) +
+          " corners) cannot be triangulated: it is degenerate or not planar enough");
+    }
+    for (vtkIdType k = 0; k + 2 < this->Corners->GetNumberOfIds(); k += 3)
+    {
+      this->AddTriangle(ids[this->Corners->GetId(k)], ids[this->Corners->GetId(k + 1)],
+        ids[this->Corners->GetId(k + 2)], facet);
+    }
+  }
+
+  void AddTriangle(vtkIdType a, vtkIdType b, vtkIdType c, int facet)
+  {
+    this->Surface.triangles.push_back({ this->Use(a), this->Use(b), this->Use(c) });
+    this->Surface.triangle_facet.push_back(facet);
+  }
+
+private:
+  int Use(vtkIdType id)
+  {
+    if (this->Index[id] < 0)
+    {
+      double p[3];
+      this->Points->GetPoint(id, p);
+      this->Index[id] = static_cast<int>(this->Surface.points.size());
+      this->Surface.points.push_back({ p[0], p[1], p[2] });
+    }
+    return this->Index[id];
+  }
+
+  vtkPoints* Points;
+  gdr::Surface& Surface;
+  std::vector<int> Index;
+  vtkNew<vtkPolygon> Polygon;
+  vtkNew<vtkIdList> Corners;
+};
+
+const char* const GridPointIds = "vtkGDRGridPointIds";
+}
+
+//------------------------------------------------------------------------------
+void vtkGDRConversion::ToSurface(vtkPolyData* input, gdr::Surface& surface)
+{
+  surface = gdr::Surface();
+  if (!input || !input->GetPoints() || input->GetNumberOfPoints() == 0)
+  {
+    return;
+  }
+  SurfaceBuilder builder(input->GetPoints(), surface, true);
+  // Cell ids of a polydata count vertices, lines, polygons, then strips.
+  vtkIdType cellId = input->GetNumberOfVerts() + input->GetNumberOfLines();
+  vtkIdType npts;
+  const vtkIdType* ids;
+  vtkCellArray* polys = input->GetPolys();
+  for (polys->InitTraversal(); polys->GetNextCell(npts, ids); ++cellId)
+  {
+    builder.AddPolygon(npts, ids, static_cast<int>(cellId));
+  }
+  vtkCellArray* strips = input->GetStrips();
+  for (strips->InitTraversal(); strips->GetNextCell(npts, ids); ++cellId)
+  {
+    for (vtkIdType i = 0; i + 2 < npts; ++i)
+    {
+      // Every other triangle of a strip turns the other way round.
+      const vtkIdType a = ids[i % 2 ? i + 1 : i];
+      const vtkIdType b = ids[i % 2 ? i : i + 1];
+      builder.AddTriangle(a, b, ids[i + 2], static_cast<int>(cellId));
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkGDRConversion::ToSurface(
+  vtkUnstructuredGrid* input, gdr::Surface& surface, std::string& warning)
+{
+  surface = gdr::Surface();
+  warning.clear();
+  if (!input || !input->GetPoints() || input->GetNumberOfCells() == 0)
+  {
+    return;
+  }
+  vtkDataArray* region = input->GetCellData()->GetArray("Region");
+  if (region &&
+    (region->GetDataType() == VTK_FLOAT || region->GetDataType() == VTK_DOUBLE ||
+      region->GetNumberOfComponents() != 1))
+  {
+    warning = "The cell array Region is not a single integer per cell: it is ignored.";
+    region = nullptr;
+  }
+  if (!region)
+  {
+    vtkNew<vtkDataSetSurfaceFilter> boundary;
+    boundary->SetInputData(input);
+    boundary->Update();
+    vtkGDRConversion::ToSurface(boundary->GetOutput(), surface);
+    return;
+  }
+
+  // Each Region value is extracted and its faces taken with the grid's point ids, so that
+  // the faces of all regions share one numbering and a face between two regions is taken
+  // once.
+  std::set<long long> values;
+  for (vtkIdType c = 0; c < region->GetNumberOfTuples(); ++c)
+  {
+    values.insert(static_cast<long long>(region->GetComponent(c, 0)));
+  }
+  vtkNew<vtkIdFilter> gridIds;
+  gridIds->SetInputData(input);
+  gridIds->PointIdsOn();
+  gridIds->CellIdsOff();
+  gridIds->FieldDataOff();
+  gridIds->SetPointIdsArrayName(GridPointIds);
+
+  SurfaceBuilder builder(input->GetPoints(), surface, false);
+  std::set<std::vector<vtkIdType>> taken;
+  int facet = 0;
+  for (const long long value : values)
+  {
+    vtkNew<vtkThreshold> part;
+    part->SetInputConnection(gridIds->GetOutputPort());
+    part->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_CELLS, "Region");
+    part->SetThresholdFunction(vtkThreshold::THRESHOLD_BETWEEN);
+    part->SetLowerThreshold(static_cast<double>(value));
+    part->SetUpperThreshold(static_cast<double>(value));
+
+    vtkNew<vtkDataSetSurfaceFilter> faces;
+    faces->SetInputConnection(part->GetOutputPort());
+    faces->Update();
+    vtkPolyData* pd = faces->GetOutput();
+    vtkDataArray* ids = pd->GetPointData()->GetArray(GridPointIds);
+    vtkIdType npts;
+    const vtkIdType* local;
+    std::vector<vtkIdType> corners;
+    vtkCellArray* polys = pd->GetPolys();
+    for (polys->InitTraversal(); ids && polys->GetNextCell(npts, local); ++facet)
+    {
+      corners.resize(npts);
+      for (vtkIdType i = 0; i < npts; ++i)
+      {
+        corners[i] = static_cast<vtkIdType>(ids->GetComponent(local[i], 0));
+      }
+      std::vector<vtkIdType> key = corners;
+      std::sort(key.begin(), key.end());
+      if (taken.insert(std::move(key)).second)
+      {
+        builder.AddPolygon(npts, corners.data(), facet);
+      }
+    }
+
+    // One seed per connected part: the center of one of its cells lies inside it.
+    vtkNew<vtkConnectivityFilter> parts;
+    parts->SetInputConnection(part->GetOutputPort());
+    parts->SetExtractionModeToAllRegions();
+    parts->ColorRegionsOn();
+    vtkNew<vtkCellCenters> centers;
+    centers->SetInputConnection(parts->GetOutputPort());
+    centers->Update();
+    vtkDataSet* seeds = centers->GetOutput();
+    vtkDataArray* partIds = seeds->GetPointData()->GetArray("RegionId");
+    std::vector<char> seeded(parts->GetNumberOfExtractedRegions(), 0);
+    for (vtkIdType i = 0; partIds && i < seeds->GetNumberOfPoints(); ++i)
+    {
+      const vtkIdType id = static_cast<vtkIdType>(partIds->GetComponent(i, 0));
+      if (id < 0 || id >= static_cast<vtkIdType>(seeded.size()) || seeded[id])
+      {
+        continue;
+      }
+      seeded[id] = 1;
+      double p[3];
+      seeds->GetPoint(i, p);
+      gdr::RegionSeed seed;
+      seed.point = { p[0], p[1], p[2] };
+      seed.attribute = static_cast<int>(value);
+      surface.regions.push_back(seed);
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkGDRConversion::AddSeeds(vtkDataSet* seeds, gdr::Surface& surface)
+{
+  if (!seeds)
+  {
+    return;
+  }
+  vtkDataArray* attribute = seeds->GetPointData()->GetArray("RegionAttribute");
+  for (vtkIdType id = 0; id < seeds->GetNumberOfPoints(); ++id)
+  {
+    double p[3];
+    seeds->GetPoint(id, p);
+    if (!attribute)
+    {
+      surface.holes.push_back({ p[0], p[1], p[2] });
+      continue;
+    }
+    gdr::RegionSeed seed;
+    seed.point = { p[0], p[1], p[2] };
+    seed.attribute = static_cast<int>(std::lround(attribute->GetComponent(id, 0)));
+    surface.regions.push_back(seed);
+  }
+}
+
+//------------------------------------------------------------------------------
+namespace
+{
+template <typename ArrayT, typename ValueT>
+void AddCellArray(vtkCellData* cd, const char* name, const std::vector<ValueT>& values)
+{
+  vtkNew<ArrayT> array;
+  array->SetName(name);
+  array->SetNumberOfValues(static_cast<vtkIdType>(values.size()));
+  std::copy(values.begin(), values.end(), array->GetPointer(0));
+  cd->AddArray(array);
+}
+}
+
+void vtkGDRConversion::ToUnstructuredGrid(
+  const gdr::QualityTetResult& result, vtkUnstructuredGrid* output)
+{
+  output->Initialize();
+  const gdr::TetMesh& mesh = result.mesh;
+  const vtkIdType npoints = static_cast<vtkIdType>(mesh.points.size());
+  const vtkIdType ntets = static_cast<vtkIdType>(mesh.tets.size());
+
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(npoints);
+  for (vtkIdType i = 0; i < npoints; ++i)
+  {
+    points->SetPoint(i, mesh.points[i].x, mesh.points[i].y, mesh.points[i].z);
+  }
+
+  // VTK's tetrahedra have (p1 - p0) x (p2 - p0) pointing towards p3, the opposite of the
+  // core's orientation (orient3d > 0, gdr/validate.h): two corners are swapped.
+  vtkNew<vtkIdTypeArray> offsets;
+  vtkNew<vtkIdTypeArray> connectivity;
+  offsets->SetNumberOfValues(ntets + 1);
+  connectivity->SetNumberOfValues(4 * ntets);
+  for (vtkIdType t = 0; t < ntets; ++t)
+  {
+    const std::array<int, 4>& v = mesh.tets[t];
+    offsets->SetValue(t, 4 * t);
+    connectivity->SetValue(4 * t, v[1]);
+    connectivity->SetValue(4 * t + 1, v[0]);
+    connectivity->SetValue(4 * t + 2, v[2]);
+    connectivity->SetValue(4 * t + 3, v[3]);
+  }
+  offsets->SetValue(ntets, 4 * ntets);
+  vtkNew<vtkCellArray> tets;
+  tets->SetData(offsets, connectivity);
+  output->SetPoints(points);
+  output->SetCells(VTK_TETRA, tets);
+
+  if (static_cast<vtkIdType>(mesh.point_type.size()) == npoints)
+  {
+    vtkNew<vtkUnsignedCharArray> type;
+    type->SetName("PointType");
+    type->SetNumberOfValues(npoints);
+    for (vtkIdType i = 0; i < npoints; ++i)
+    {
+      type->SetValue(i, static_cast<unsigned char>(mesh.point_type[i]));
+    }
+    output->GetPointData()->AddArray(type);
+  }
+
+  vtkCellData* cd = output->GetCellData();
+  AddCellArray<vtkFloatArray>(cd, "RadiusEdgeRatio", result.radius_edge);
+  AddCellArray<vtkFloatArray>(cd, "MinDihedralAngle", result.min_dihedral);
+  AddCellArray<vtkFloatArray>(cd, "MaxDihedralAngle", result.max_dihedral);
+  AddCellArray<vtkDoubleArray>(cd, "Volume", result.volume);
+  AddCellArray<vtkUnsignedCharArray>(cd, "IsBad", result.is_bad);
+  AddCellArray<vtkIntArray>(cd, "Region",
+    mesh.tet_region.empty() ? std::vector<int>(mesh.tets.size(), 0) : mesh.tet_region);
+  cd->SetActiveScalars("MinDihedralAngle");
+}
+
+//------------------------------------------------------------------------------
+void vtkGDRConversion::ToSubfaces(
+  const gdr::TetMesh& mesh, vtkUnstructuredGrid* tets, vtkPolyData* output)
+{
+  output->Initialize();
+  const vtkIdType nfaces = static_cast<vtkIdType>(mesh.subfaces.size());
+  vtkNew<vtkIdTypeArray> offsets;
+  vtkNew<vtkIdTypeArray> connectivity;
+  offsets->SetNumberOfValues(nfaces + 1);
+  connectivity->SetNumberOfValues(3 * nfaces);
+  for (vtkIdType f = 0; f < nfaces; ++f)
+  {
+    offsets->SetValue(f, 3 * f);
+    for (int k = 0; k < 3; ++k)
+    {
+      connectivity->SetValue(3 * f + k, mesh.subfaces[f][k]);
+    }
+  }
+  offsets->SetValue(nfaces, 3 * nfaces);
+  vtkNew<vtkCellArray> triangles;
+  triangles->SetData(offsets, connectivity);
+  output->SetPoints(tets->GetPoints());
+  output->SetPolys(triangles);
+  output->GetPointData()->PassData(tets->GetPointData());
+  AddCellArray<vtkIntArray>(output->GetCellData(), "FacetId",
+    mesh.subface_facet.size() == mesh.subfaces.size() ? mesh.subface_facet
+                                                      : std::vector<int>(mesh.subfaces.size(), -1));
 }

@@ -11,15 +11,18 @@
 #define vtkGDRConversion_h
 
 #include "gdr/pslg.h"
+#include "gdr/qm3d.h"
 #include "gdr/refine2d.h"
 
 #include <string>
+#include <vector>
 
 class vtkDataArray;
 class vtkDataSet;
 class vtkFieldData;
 class vtkPolyData;
 class vtkTable;
+class vtkUnstructuredGrid;
 
 class vtkGDRConversion
 {
@@ -60,6 +63,59 @@ public:
    * The statistics of a 2D run as field data arrays.
    */
   static void AddStats(const gdr::Refine2dStats& stats, vtkFieldData* fieldData);
+
+  /**
+   * Builds a surface from polydata: each polygon and each triangle strip is one facet
+   * (Surface::triangle_facet holds its polydata cell id); polygons with more than three
+   * corners are triangulated by vtkPolygon. Lines and vertices are ignored. All points are
+   * kept, in order, so that the engine's messages name the input's point ids. Throws
+   * gdr::Error(InvalidInput) for a polygon that cannot be triangulated.
+   */
+  static void ToSurface(vtkPolyData* input, gdr::Surface& surface);
+
+  /**
+   * Builds a surface from an unstructured grid: its boundary faces (vtkDataSetSurfaceFilter)
+   * and, when the grid has an integer cell array Region, also the faces between cells of
+   * different Region values, with one region seed (the center of one of its cells) per
+   * connected part of each Region value. Facet ids are the indices of the extracted faces.
+   * `warning` is set when a Region array is present but not of an integer type (then it is
+   * ignored).
+   */
+  static void ToSurface(vtkUnstructuredGrid* input, gdr::Surface& surface, std::string& warning);
+
+  /**
+   * Appends the points of `seeds` to `surface`: as region seeds when `seeds` has the point
+   * array RegionAttribute (its value the attribute), else as hole seeds.
+   */
+  static void AddSeeds(vtkDataSet* seeds, gdr::Surface& surface);
+
+  /**
+   * The tetrahedra of `result` into `output` (reset first) with the point array PointType
+   * and the cell arrays RadiusEdgeRatio, MinDihedralAngle, MaxDihedralAngle, Volume, IsBad
+   * and Region (0 where the input has no regions), as the engine measured them.
+   * MinDihedralAngle is the active cell scalar, so that ParaView colors by it.
+   */
+  static void ToUnstructuredGrid(const gdr::QualityTetResult& result, vtkUnstructuredGrid* output);
+
+  /**
+   * The subfaces of `mesh` as triangles over the points and point data of `tets` (its
+   * ToUnstructuredGrid output, shared) with the cell array FacetId: the input facet each
+   * lies on (-1 where unknown).
+   */
+  static void ToSubfaces(const gdr::TetMesh& mesh, vtkUnstructuredGrid* tets, vtkPolyData* output);
+
+  /**
+   * A histogram table of precomputed 1-unit bins: bin_extents (bin centers, the column
+   * name ParaView's charts take as the x axis) and `countName` (counts, the series name in
+   * the chart's legend).
+   */
+  static void HistogramTable(
+    const std::vector<long long>& counts, const char* countName, vtkTable* table);
+
+  /**
+   * The statistics of a 3D run as field data arrays.
+   */
+  static void AddStats(const gdr::QualityTetStats& stats, vtkFieldData* fieldData);
 };
 
 #endif
