@@ -43,7 +43,8 @@ vtk_module_wrap_python(
 # The package's __init__: imports VTK's base modules first, then the wrapped classes.
 set(_gdr_python_init "${CMAKE_BINARY_DIR}/${GDR_PYTHON_DESTINATION}/gpudelaunay/__init__.py")
 file(GENERATE OUTPUT "${_gdr_python_init}" CONTENT
-"\"\"\"GPU Delaunay mesh refinement filters for VTK (vtkGPUConstrainedDelaunay2D).\"\"\"
+"\"\"\"GPU Delaunay mesh refinement filters for VTK (vtkGPUConstrainedDelaunay2D,
+vtkGPUQualityTetMesh).\"\"\"
 import vtkmodules.vtkCommonExecutionModel  # noqa: F401  (base classes)
 from .GPUDelaunayFilters import *  # noqa: F401,F403
 ")

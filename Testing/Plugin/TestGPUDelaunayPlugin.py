@@ -16,11 +16,8 @@ import sys
 from paraview.simple import *  # noqa: F401,F403
 from paraview import servermanager
 
-
-def check(condition, message):
-    if not condition:
-        print("FAILED:", message)
-        sys.exit(1)
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from plugin_test_support import check, check_documented, compare_images  # noqa: E402
 
 
 def parse():
@@ -32,29 +29,6 @@ def parse():
     p.add_argument("--baseline")
     p.add_argument("--update-baseline", action="store_true")
     return p.parse_args()
-
-
-def compare_images(test_png, baseline_png):
-    from vtkmodules.vtkIOImage import vtkPNGReader
-    from vtkmodules.util.numpy_support import vtk_to_numpy
-    import numpy
-
-    def load(path):
-        r = vtkPNGReader()
-        r.SetFileName(path)
-        r.Update()
-        img = r.GetOutput()
-        dims = img.GetDimensions()
-        a = vtk_to_numpy(img.GetPointData().GetScalars()).astype(numpy.int32)
-        return a.reshape(dims[1], dims[0], -1)[:, :, :3]
-
-    a, b = load(test_png), load(baseline_png)
-    check(a.shape == b.shape, "image size %s differs from baseline %s" % (a.shape, b.shape))
-    diff = numpy.abs(a - b).max(axis=2)
-    changed = float((diff > 40).mean())
-    print("image comparison: %.3f%% of the pixels differ" % (100 * changed))
-    check(changed < 0.01, "image differs from baseline %s in %.2f%% of the pixels"
-          % (baseline_png, 100 * changed))
 
 
 def main():
@@ -74,12 +48,9 @@ def main():
     check(mesh.MaximumSteinerPoints == -1, "MaximumSteinerPoints default")
     check(mesh.Mode == "Ruppert" and mesh.Backend == "Auto", "Mode/Backend defaults")
     check(mesh.RemoveExterior == 0 and mesh.SplitIntersections == 0, "boolean defaults")
-    for name in ("MinimumAngle", "MaximumEdgeLength", "MaximumArea", "MaximumSteinerPoints",
-                 "Mode", "Backend", "RemoveExterior", "SplitIntersections", "HoleSeeds"):
-        prop = mesh.GetProperty(name)
-        check(prop is not None, "property " + name)
-        doc = prop.SMProperty.GetDocumentation()
-        check(doc is not None and len(doc.GetDescription().strip()) > 20, "documentation of " + name)
+    check_documented(mesh, ("MinimumAngle", "MaximumEdgeLength", "MaximumArea",
+                            "MaximumSteinerPoints", "Mode", "Backend", "RemoveExterior",
+                            "SplitIntersections", "HoleSeeds"))
     angle_domain = mesh.GetProperty("MinimumAngle").SMProperty.GetDomain("range")
     check(angle_domain.GetMinimum(0) == 0 and angle_domain.GetMaximum(0) == 34,
           "MinimumAngle range 0..34")
