@@ -129,8 +129,10 @@ def poly_to_vtp(path, workdir):
     return pslg_file, holes_file, len(segments) > 0
 
 
-def load_plugin(explicit):
-    if "GPUConstrainedDelaunay2D" in globals():
+def load_plugin(explicit, ns=None):
+    """Loads the GPUDelaunayRefinement plugin, its proxies into `ns` (default: this module)."""
+    ns = globals() if ns is None else ns
+    if "GPUConstrainedDelaunay2D" in ns:
         return  # auto-loaded through PV_PLUGIN_PATH
     candidates = [explicit] if explicit else []
     for d in os.environ.get("PV_PLUGIN_PATH", "").split(os.pathsep):
@@ -142,10 +144,10 @@ def load_plugin(explicit):
         "GPUDelaunayRefinement.so")))
     for c in candidates:
         if c and os.path.isfile(c):
-            LoadPlugin(c, remote=False, ns=globals())
+            LoadPlugin(c, remote=False, ns=ns)
             return
-    sys.exit("render_example.py: GPUDelaunayRefinement plugin not found "
-             "(build it, or set PV_PLUGIN_PATH / --plugin)")
+    sys.exit("%s: GPUDelaunayRefinement plugin not found (build it, or set PV_PLUGIN_PATH / "
+             "--plugin)" % os.path.basename(sys.argv[0]))
 
 
 def write_vtu(polydata, path):
@@ -266,11 +268,6 @@ def main():
     bar.AutomaticLabelFormat = 0
     bar.LabelFormat = "%.0f"
     bar.RangeLabelFormat = "%.0f"
-    text = Text(Text=title)
-    text_display = Show(text, view)
-    text_display.Color = [0.1, 0.1, 0.1]
-    text_display.FontSize = 14
-    text_display.WindowLocation = "Upper Center"
     view.InteractionMode = "2D"
     ResetCamera(view)
 
@@ -285,16 +282,23 @@ def main():
     chart.BottomAxisTitle = "degrees"
     chart.LeftAxisTitle = "triangles"
 
-    # Each view saved at its own size, then put side by side.
+    # Each view saved at its own size, then put side by side. The chart goes first, before
+    # the render view gets its title: once a text source is shown, the chart's screenshot
+    # gets ghost copies of its axis labels (ParaView 5.11 under Xvfb).
     left_w = int(0.6 * width)
     left_png = os.path.join(workdir, "mesh.png")
     right_png = os.path.join(workdir, "histogram.png")
     view.ViewSize = [left_w, height]
     chart.ViewSize = [width - left_w, height]
-    Render(view)
-    SaveScreenshot(left_png, view, ImageResolution=[left_w, height])
     Render(chart)
     SaveScreenshot(right_png, chart, ImageResolution=[width - left_w, height])
+    text = Text(Text=title)
+    text_display = Show(text, view)
+    text_display.Color = [0.1, 0.1, 0.1]
+    text_display.FontSize = 14
+    text_display.WindowLocation = "Upper Center"
+    Render(view)
+    SaveScreenshot(left_png, view, ImageResolution=[left_w, height])
     side_by_side(left_png, right_png, args.output)
     shutil.rmtree(workdir, ignore_errors=True)
     print("picture written to", args.output)
