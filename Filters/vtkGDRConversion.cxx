@@ -735,4 +735,5 @@ void vtkGDRConversion::ToSubfaces(
   AddCellArray<vtkIntArray>(output->GetCellData(), "FacetId",
     mesh.subface_facet.size() == mesh.subfaces.size() ? mesh.subface_facet
                                                       : std::vector<int>(mesh.subfaces.size(), -1));
+  output->GetCellData()->SetActiveScalars("FacetId");
 }

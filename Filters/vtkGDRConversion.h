@@ -99,8 +99,8 @@ public:
 
   /**
    * The subfaces of `mesh` as triangles over the points and point data of `tets` (its
-   * ToUnstructuredGrid output, shared) with the cell array FacetId: the input facet each
-   * lies on (-1 where unknown).
+   * ToUnstructuredGrid output, shared) with the cell array FacetId, the active scalars: the
+   * input facet each lies on (-1 where unknown).
    */
   static void ToSubfaces(const gdr::TetMesh& mesh, vtkUnstructuredGrid* tets, vtkPolyData* output);
 
