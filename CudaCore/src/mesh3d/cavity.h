@@ -25,9 +25,11 @@ using exec::u64;
 // `start`; kFacetSplit: subface `sub` (face ek of `start`), p lies in it; kFreePoint: p lies
 // in tetrahedron `start`.
 enum : signed char { kDropped = -1, kSegmentSplit = 0, kFacetSplit = 1, kFreeSplit = 2 };
-// Candidate::ek of a free point that makes room for a split on a segment or facet (its
-// cavity was not star-shaped): it goes in even if it encroaches a subsegment or subface.
-enum : signed char { kMakeRoomPoint = 1 };
+// Candidate::ek of a free point: a circumcentre asked for by a tetrahedron's shape
+// (kShapePoint: refused in the protecting balls of sharp features), by its size
+// (kSizePoint), or to make room for a split on a segment or facet whose cavity was not
+// star-shaped (kMakeRoomPoint: it goes in even if it encroaches a subsegment or subface).
+enum : signed char { kShapePoint = -1, kMakeRoomPoint = 1, kSizePoint = 2 };
 
 struct Candidate {
   double p[3];
@@ -126,6 +128,8 @@ struct GrowCavity {
   // Ruppert / Shewchuk: a point that would encroach a subsegment is not inserted; the
   // subsegment is split first (flagged for the next iteration). Points on segments are
   // always inserted.
+  // A sharp segment is never split for being encroached (it would cascade, TetGen): the
+  // point that would encroach it is left out, and so is what asked for the point.
   GDR_HD bool encroaches_subsegment(int t, const Candidate& c) const {
     if (c.kind == kSegmentSplit || (c.kind == kFreeSplit && c.ek == kMakeRoomPoint)) return false;
     const int flags = m.tflag[t];
@@ -134,10 +138,26 @@ struct GrowCavity {
       if (!(flags & (kSeg0 << e))) continue;
       const int a = m.tv[4 * t + edge_corner(e, 0)], b = m.tv[4 * t + edge_corner(e, 1)];
       if (pred::in_diametral_sphere(pt(m, a), pt(m, b), c.p) > 0) {
-        exec::atomic_or(&m.tflag[t], kSplitEdge0 << e);
+        if (!is_sharp_subseg(m, a, b)) exec::atomic_or(&m.tflag[t], kSplitEdge0 << e);
+        else give_up(c);
         return true;
       }
     }
+    return false;
+  }
+
+  // What asked for a point that may not go in: the bad tetrahedron is protected, the subface
+  // is left as it is.
+  GDR_HD void give_up(const Candidate& c) const {
+    if (c.kind == kFacetSplit) exec::atomic_or(&m.sflag[c.sub], kSubNoSplit);
+    if (c.origin >= 0) protect_tet(m.tflag, c.origin);
+  }
+
+  // A shape-driven circumcentre in the protecting ball of a vertex of its cavity.
+  GDR_HD bool in_protecting_balls(int t, const Candidate& c) const {
+    if (c.kind != kFreeSplit || c.ek != kShapePoint) return false;
+    for (int k = 0; k < 4; ++k)
+      if (in_protecting_ball(m, m.tv[4 * t + k], c.p)) return true;
     return false;
   }
 
@@ -148,6 +168,11 @@ struct GrowCavity {
       return 0;
     }
     if (claim(&m.mark[t], h, c) <= 0) return 0;
+    if (in_protecting_balls(t, c)) {
+      give_up(c);
+      failed[h.pt] = kFailEncroach;
+      return 0;
+    }
     if (encroaches_subsegment(t, c)) {
       failed[h.pt] = kFailEncroach;
       return 0;
@@ -199,7 +224,8 @@ struct GrowCavity {
       const int ce = edge_index(corner_of(m, st0, x), corner_of(m, st0, y));
       if (is_subseg_edge(m, st0, ce)) {
         if (c.kind == kFacetSplit && pred::in_diametral_sphere(pt(m, x), pt(m, y), c.p) > 0) {
-          exec::atomic_or(&m.tflag[st0], kSplitEdge0 << ce);
+          if (!is_sharp_subseg(m, x, y)) exec::atomic_or(&m.tflag[st0], kSplitEdge0 << ce);
+          else give_up(c);
           failed[h.pt] = kFailEncroach;
           return n;
         }
@@ -386,7 +412,7 @@ struct CheckCavity {
             // tetrahedron is (for a point on a segment or facet), or the bad tetrahedron
             // asking for p is left as it is.
             failed[h.pt] = kFailDelaunay;
-            if (is_subseg(m, t, x, y))
+            if (is_subseg(m, t, x, y) && !is_sharp_subseg(m, x, y))
               exec::atomic_or(&m.tflag[t], kSplitEdge0 << edge_index(corner_of(m, t, x), corner_of(m, t, y)));
             else if (c.kind != kFreeSplit)
               exec::atomic_or(&m.tflag[t], kMakeRoom);
@@ -646,6 +672,16 @@ struct WritePoints {
     m.ptype[p] = c.kind == kSegmentSplit ? kSegmentPoint : (c.kind == kFacetSplit ? kFacetPoint : kFreePoint);
     m.pseg[p] = c.kind == kSegmentSplit ? segment_of(m, c.a, c.b) : -1;
     m.pfacet[p] = c.kind == kFacetSplit ? m.sfacet[c.sub] : -1;
+    // On a sharp segment the protecting ball's radius runs linearly between the ends.
+    float r = 0;
+    if (c.kind == kSegmentSplit && m.pseg[p] >= 0 && m.sharp[m.pseg[p]]) {
+      const float ra = m.prad[c.a], rb = m.prad[c.b];
+      if (ra > 0 && rb > 0) {
+        const double f = sqrt(dist2(pt(m, c.a), c.p) / dist2(pt(m, c.a), pt(m, c.b)));
+        r = static_cast<float>(ra + f * (rb - ra));
+      }
+    }
+    m.prad[p] = r;
   }
 };
 

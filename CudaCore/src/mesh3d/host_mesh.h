@@ -33,6 +33,12 @@ struct HostTetMesh {
   std::vector<int> seg;             // 2 per segment: endpoint point ids (input points)
   int input_points = 0;             // points [0, input_points) are the input's
 
+  // Sharp features, found by the refinement (qm3d/features.h) and empty until then: per
+  // segment, whether two facets meet there at a small dihedral angle; per point, the radius
+  // of its protecting ball (0: none).
+  std::vector<std::uint8_t> sharp;
+  std::vector<float> prad;
+
   int points() const { return static_cast<int>(ptype.size()); }
   int tets() const { return static_cast<int>(tv.size() / 4); }
   int subfaces() const { return static_cast<int>(sv.size() / 3); }

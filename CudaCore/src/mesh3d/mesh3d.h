@@ -74,6 +74,8 @@ struct TetView {
   const int* seg;
   const int* vseg_begin;  // segments at input vertex v: vseg[vseg_begin[v] .. vseg_begin[v+1])
   const int* vseg;
+  const std::uint8_t* sharp;  // per segment (host_mesh.h)
+  float* prad;                // per point: protecting-ball radius
   int ntet, npts, nsub;
 };
 
@@ -87,6 +89,8 @@ struct DeviceTetMesh {
   Buf<int> tv, tn, tsub, tflag, tregion, mark, aux;
   Buf<int> sv, st, sfacet, sflag, smark, saux;
   Buf<int> seg, vseg_begin, vseg;
+  Buf<std::uint8_t> sharp;
+  Buf<float> prad;
   int ntet = 0, npts = 0, nsub = 0;
   bool regions = false;
 
@@ -95,7 +99,8 @@ struct DeviceTetMesh {
                    tn.data(),    tsub.data(),   tflag.data(), regions ? tregion.data() : nullptr,
                    mark.data(),  aux.data(),    sv.data(),    st.data(),     sfacet.data(),
                    sflag.data(), smark.data(),  saux.data(),  seg.data(),    vseg_begin.data(),
-                   vseg.data(),  ntet,          npts,         nsub};
+                   vseg.data(),  sharp.data(),  prad.data(),  ntet,          npts,
+                   nsub};
   }
 
   void upload(const HostTetMesh& h) {
@@ -139,6 +144,8 @@ struct DeviceTetMesh {
       for (int k = 0; k < 2; ++k) list[fill[h.seg[2 * s + k]]++] = s;
     vseg_begin.upload(begin);
     vseg.upload(list);
+    sharp.upload(h.sharp.empty() ? std::vector<std::uint8_t>(std::size_t(ns), 0) : h.sharp);
+    prad.upload(h.prad.empty() ? std::vector<float>(std::size_t(npts), 0.0f) : h.prad);
   }
 
   // The whole mesh back on the host, links included (for check_host_mesh in tests). The
@@ -166,6 +173,8 @@ struct DeviceTetMesh {
     get(st, 2 * std::size_t(nsub), h.st);
     get(sfacet, nsub, h.sfacet);
     get(seg, seg.size(), h.seg);
+    get(sharp, sharp.size(), h.sharp);
+    get(prad, npts, h.prad);
     return h;
   }
 
@@ -193,6 +202,7 @@ struct DeviceTetMesh {
       ptype.resize(pts);
       pseg.resize(pts);
       pfacet.resize(pts);
+      prad.resize(pts);
     }
   }
 };
@@ -264,6 +274,12 @@ GDR_HD_INLINE bool in_diametral_ball(const double* a, const double* b, const dou
   return dist2(o, p) < r2 * (1.0 - 1e-12);
 }
 
+// Does p lie in the protecting ball of vertex v (a sharp feature: qm3d/features.h)?
+GDR_HD_INLINE bool in_protecting_ball(const TetView& m, int v, const double* p) {
+  const double r = m.prad[v];
+  return r > 0 && dist2(pt(m, v), p) <= r * r;
+}
+
 // ---------------------------------------------------------------------------------------
 // Topology.
 
@@ -317,6 +333,12 @@ GDR_HD_INLINE int segment_of(const TetView& m, int a, int b) {
     if (m.seg[2 * s] == b || m.seg[2 * s + 1] == b) return s;
   }
   return -1;
+}
+
+// Is the subsegment ab on a sharp segment (where facets meet at a small angle)?
+GDR_HD_INLINE bool is_sharp_subseg(const TetView& m, int a, int b) {
+  const int s = segment_of(m, a, b);
+  return s >= 0 && m.sharp[s];
 }
 
 // Orientation of the point p against face f of t: > 0 when p lies on the inner side (the

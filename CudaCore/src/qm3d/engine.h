@@ -127,6 +127,8 @@ struct Engine {
   // counters: [0] broken link found while remeshing, [1] tetrahedra killed, [2] subfaces killed
   enum { kError = 0, kKilledTets = 1, kKilledSubs = 2, kCounters = 3 };
   static constexpr int kClaimRounds = 8;  // claim rounds per iteration (grow_cavities)
+  static constexpr std::size_t kStallWindow = 40;
+  std::vector<std::size_t> backlog;       // elements to split, per iteration
 
   Engine(const EngineParams& p, const Callbacks& c) : params(p), cb(c) {}
 
@@ -153,6 +155,15 @@ struct Engine {
         insert(ns, won);                                // line 9
         idle = 0;
       } else if (++idle >= 8) {
+        res.stalled = true;
+        break;
+      }
+      // Stall detection: the elements left to split must shrink by a fiftieth every
+      // kStallWindow iterations; otherwise what is left cannot be split by this method (the
+      // points it needs keep failing) and the run ends, reporting them.
+      backlog.push_back(nl);
+      if (backlog.size() > kStallWindow &&
+          50 * nl > 49 * backlog[backlog.size() - 1 - kStallWindow]) {
         res.stalled = true;
         break;
       }
@@ -195,6 +206,17 @@ struct Engine {
     }
     std::string s;
     for (int k = 1; k < m3d::kFailReasons; ++k) s += (k > 1 ? "/" : "") + std::to_string(n[k]);
+    {
+      long long mr = 0, mrw = 0, mrf[m3d::kFailReasons] = {};
+      for (std::size_t j = 0; j < f.size(); ++j)
+        if (c[j].kind == m3d::kFreeSplit && c[j].ek == m3d::kMakeRoomPoint) {
+          ++mr;
+          mrw += f[j] == 0;
+          ++mrf[f[j] >= 0 && f[j] < m3d::kFailReasons ? f[j] : 0];
+        }
+      s += ", make-room " + std::to_string(mr) + " won " + std::to_string(mrw) + " fail";
+      for (int k = 1; k < m3d::kFailReasons; ++k) s += " " + std::to_string(mrf[k]);
+    }
     s += ", seg/facet/free candidates " + std::to_string(kinds[0]) + "/" + std::to_string(kinds[1]) +
          "/" + std::to_string(kinds[2]) + " won " + std::to_string(wins[0]) + "/" +
          std::to_string(wins[1]) + "/" + std::to_string(wins[2]);

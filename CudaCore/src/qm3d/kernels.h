@@ -122,7 +122,7 @@ GDR_HD_INLINE int static_collect_mask(const TetView& m, const Criteria& c, int t
   for (int e = 0; e < 6; ++e) {
     if (!(flags & (m3d::kSeg0 << e))) continue;
     const int ca = m3d::edge_corner(e, 0), cb = m3d::edge_corner(e, 1);
-    if (!all && cb != 3) continue;
+    if ((!all && cb != 3) || m3d::is_sharp_subseg(m, v[ca], v[cb])) continue;
     for (int k = 0; k < 4; ++k) {
       if (k == ca || k == cb) continue;
       if (pred::in_diametral_sphere(pt(m, v[ca]), pt(m, v[cb]), pt(m, v[k])) > 0) {
@@ -280,6 +280,15 @@ GDR_HD_INLINE void make_subface_candidate(const TetView& m, int s, unsigned id, 
       if (side_p != 0 && (side_p > 0) != (side_z > 0)) exit = e;
     }
     if (exit < 0) {
+      // Left as it is (TetGen): a circumcentre in the protecting ball of a corner, or one
+      // that lands in a subface that is left as it is.
+      bool refuse = (m.sflag[u] & m3d::kSubNoSplit) != 0;
+      for (int k = 0; k < 3; ++k) refuse = refuse || m3d::in_protecting_ball(m, sv[k], p);
+      if (refuse) {
+        exec::atomic_or(&m.sflag[s], m3d::kSubNoSplit);
+        if (origin >= 0) m3d::protect_tet(m.tflag, origin);
+        return;
+      }
       for (int k = 0; k < 3; ++k) out.p[k] = p[k];
       out.kind = m3d::kFacetSplit;
       out.sub = u;
@@ -293,7 +302,7 @@ GDR_HD_INLINE void make_subface_candidate(const TetView& m, int s, unsigned id, 
     }
     const int x = v[(exit + 1) % 3], y = v[(exit + 2) % 3];
     if (m3d::is_subseg(m, t, x, y)) {
-      if (pred::in_diametral_sphere(pt(m, x), pt(m, y), p) > 0) {
+      if (pred::in_diametral_sphere(pt(m, x), pt(m, y), p) > 0 && !m3d::is_sharp_subseg(m, x, y)) {
         const int e = m3d::edge_index(m3d::corner_of(m, t, x), m3d::corner_of(m, t, y));
         exec::atomic_or(&m.tflag[t], m3d::kSplitEdge0 << e);
         make_segment_candidate(m, t, e, id, out);
@@ -340,6 +349,14 @@ struct ComputeSplittingPoints {
     const TetShape s = tet_shape(m, t);
     if (!s.ok) return;
     const double* p = s.center;
+    const int klass = classify_tet(m, t, c, s);
+    const bool make_room = klass == kGood || (m.tflag[t] & m3d::kMakeRoom);
+    if (klass == kBad && !make_room)
+      for (int k = 0; k < 4; ++k)
+        if (m3d::in_protecting_ball(m, m.tv[4 * t + k], p)) {  // next to a sharp feature
+          m3d::protect_tet(m.tflag, t);
+          return;
+        }
     int u = t;
     for (int step = 0; step < c.step_limit; ++step) {
       int exit = -1;
@@ -352,20 +369,20 @@ struct ComputeSplittingPoints {
         cand.kind = m3d::kFreeSplit;
         cand.start = u;
         cand.sub = -1;
-        cand.ek = -1;
         cand.a = cand.b = -1;
         cand.origin = t;
-        const int klass = classify_tet(m, t, c, s);
-        if (klass == kGood || (m.tflag[t] & m3d::kMakeRoom)) {
+        if (make_room) {
           // Room for a point on a segment or facet: first, and even if it comes near a
           // subsegment or subface (that one waits for it).
           cand.prio = exec::make_priority(kClassSegment, 1e38f, id);
           cand.ek = m3d::kMakeRoomPoint;
-        }
-        else if (klass == kTooBig || !worst_first)
+        } else if (klass == kTooBig || !worst_first) {
           cand.prio = exec::make_priority(kClassTooBig, size_class(s.volume6), id);
-        else
+          cand.ek = klass == kTooBig ? m3d::kSizePoint : m3d::kShapePoint;
+        } else {
           cand.prio = exec::make_priority(kClassShape, static_cast<float>(fmin(s.r2 / s.lmin2, 1e38)), id);
+          cand.ek = m3d::kShapePoint;
+        }
         return;
       }
       const int sub = m.tsub[4 * u + exit];

@@ -14,6 +14,7 @@
 #include "gdr/qm3d.h"
 #include "gdr/validate.h"
 #include "qm3d/engine_dispatch.h"
+#include "qm3d/features.h"
 
 namespace gdr {
 namespace {
@@ -158,6 +159,7 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
   st.cdt_seconds = since(t0);
   st.cdt_steiner_points = mesh.points() - static_cast<long long>(plc.points.size());
   if (aborted()) throw Error(Status::Aborted, "aborted by the caller");
+  qm3d::find_sharp_features(mesh);
 
   const std::size_t estimated = estimate_tets(mesh, plc.volume, options);
   st.backend_used = resolve_backend(options.backend, estimated, gpu_min_tets(options));
