@@ -127,7 +127,7 @@ struct Engine {
   // counters: [0] broken link found while remeshing, [1] tetrahedra killed, [2] subfaces killed
   enum { kError = 0, kKilledTets = 1, kKilledSubs = 2, kCounters = 3 };
   static constexpr int kClaimRounds = 8;  // claim rounds per iteration (grow_cavities)
-  static constexpr std::size_t kStallWindow = 40;
+  static constexpr std::size_t kStallWindow = 40, kSameBacklog = 6;
   std::vector<std::size_t> backlog;       // elements to split, per iteration
 
   Engine(const EngineParams& p, const Callbacks& c) : params(p), cb(c) {}
@@ -161,9 +161,13 @@ struct Engine {
       // Stall detection: the elements left to split must shrink by a fiftieth every
       // kStallWindow iterations; otherwise what is left cannot be split by this method (the
       // points it needs keep failing) and the run ends, reporting them.
+      // The same backlog for a few iterations in a row are the same elements failing again.
       backlog.push_back(nl);
-      if (backlog.size() > kStallWindow &&
-          50 * nl > 49 * backlog[backlog.size() - 1 - kStallWindow]) {
+      const std::size_t n = backlog.size();
+      const bool shrinking = n <= kStallWindow || 50 * nl <= 49 * backlog[n - 1 - kStallWindow];
+      bool unchanged = n > kSameBacklog;
+      for (std::size_t k = 1; unchanged && k <= kSameBacklog; ++k) unchanged = backlog[n - 1 - k] == nl;
+      if (!shrinking || unchanged) {
         res.stalled = true;
         break;
       }
