@@ -380,6 +380,25 @@ HostTetMesh keep_domain(const Plc& plc, const HostTetMesh& full, const std::vect
   return m;
 }
 
+// Per facet its largest triangle: the best conditioned plane to put its Steiner points on.
+void set_facet_planes(const Plc& plc, HostTetMesh& m) {
+  const std::size_t nf = plc.facet_origin.size();
+  m.fplane.assign(3 * nf, -1);
+  std::vector<double> best(nf, -1.0);
+  for (std::size_t t = 0; t < plc.triangles.size(); ++t) {
+    const auto& r = plc.triangles[t];
+    const Point3 &a = plc.points[r[0]], &b = plc.points[r[1]], &c = plc.points[r[2]];
+    const double u[3] = {b.x - a.x, b.y - a.y, b.z - a.z}, v[3] = {c.x - a.x, c.y - a.y, c.z - a.z};
+    const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    const double area2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    const int f = plc.triangle_facet[t];
+    if (area2 > best[f]) {
+      best[f] = area2;
+      for (int k = 0; k < 3; ++k) m.fplane[3 * f + k] = r[k];
+    }
+  }
+}
+
 // tseg: an edge is a subsegment iff both ends lie on one segment (its input endpoints, or
 // points that TetGen put on it).
 void mark_subsegments(const Plc& plc, HostTetMesh& m) {
@@ -436,6 +455,7 @@ m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks) {
   const HostTetMesh full = convert(plc, out);
   HostTetMesh m = keep_domain(plc, full, tet_cells(plc, full));
   mark_subsegments(plc, m);
+  set_facet_planes(plc, m);
 #ifndef NDEBUG
   m3d::check_host_mesh(m);
 #endif

@@ -161,13 +161,35 @@ struct GrowCavity {
     return false;
   }
 
+  // A point p on segment g is outside the circumsphere of every tetrahedron with an edge
+  // between two other points of g (the line meets the sphere only there). Its rounded
+  // coordinates may say otherwise for a flat tetrahedron; its fan would then join p to that
+  // edge in a tetrahedron of (near) zero volume.
+  GDR_HD bool holds_other_subsegment(int t, const Candidate& c) const {
+    if (c.kind != kSegmentSplit || !(m.tflag[t] & kSegBits)) return false;
+    const int g = segment_of(m, c.a, c.b);
+    for (int e = 0; e < 6; ++e) {
+      if (!(m.tflag[t] & (kSeg0 << e))) continue;
+      const int x = m.tv[4 * t + edge_corner(e, 0)], y = m.tv[4 * t + edge_corner(e, 1)];
+      const bool split_one = (x == c.a && y == c.b) || (x == c.b && y == c.a);
+      if (!split_one && segment_of(m, x, y) == g) return true;
+    }
+    return false;
+  }
+
   GDR_HD int grow_tet(CavityTuple& h, const Candidate& c, CavityTuple* out) const {
     const int t = h.elem;
-    if (!(h.state & kForceIn) && !(tet_insphere(m, t, c.p) > 0)) {
+    if (!(h.state & kForceIn) &&
+        (!(tet_insphere(m, t, c.p) > 0) || holds_other_subsegment(t, c))) {
       set_result(h, kRing);
       return 0;
     }
     if (claim(&m.mark[t], h, c) <= 0) return 0;
+    if ((h.state & kForceIn) && holds_other_subsegment(t, c)) {
+      // A tetrahedron beside a split subface, flat on the facet along the segment: no fan.
+      failed[h.pt] = kFailStar;
+      return 0;
+    }
     if (in_protecting_balls(t, c)) {
       give_up(c);
       failed[h.pt] = kFailEncroach;
@@ -327,6 +349,16 @@ GDR_HD_INLINE bool compute_subface_fan_edge(const TetView& m, const Candidate& c
   return !(ns >= 0 && (m.sflag[ns] & kSubInCavity) && m.smark[ns] == j + 1);
 }
 
+// The index (0..2) of the vertex of subface s that is neither x nor y.
+GDR_HD_INLINE int edge_opposite(const TetView& m, int s, int x, int y) {
+  int e = 0;
+  for (int q = 0; q < 3; ++q) {
+    const int v = m.sv[3 * s + q];
+    if (v != x && v != y) e = q;
+  }
+  return e;
+}
+
 GDR_HD_INLINE bool subface_fan_edge(const TetView& m, int s, int e) {
   return (m.sflag[s] & (kSubFanEdge0 << e)) != 0;
 }
@@ -388,6 +420,18 @@ struct CheckCavity {
   const Candidate* cand;
   const CavityTuple* tuples;
   int* failed;
+
+  // Decided on exact data: p on facet F lies on the plane of F's subfaces; p on segment g
+  // lies on the plane of a subface that holds both input endpoints of g.
+  GDR_HD bool on_plane_of_subface(const Candidate& c, int s) const {
+    if (c.kind == kFacetSplit) return m.sfacet[s] == m.sfacet[c.sub];
+    if (c.kind != kSegmentSplit) return false;
+    const int g = segment_of(m, c.a, c.b);
+    if (g < 0) return false;
+    const int* v = m.sv + 3 * s;
+    return pred::orient3d(pt(m, v[0]), pt(m, v[1]), pt(m, v[2]), pt(m, m.seg[2 * g])) == 0 &&
+           pred::orient3d(pt(m, v[0]), pt(m, v[1]), pt(m, v[2]), pt(m, m.seg[2 * g + 1])) == 0;
+  }
   GDR_HD void operator()(long long i) const {
     const CavityTuple& h = tuples[i];
     if (is_sub_tuple(h) || result_of(h) != kCavity || failed[h.pt]) return;
@@ -395,13 +439,25 @@ struct CheckCavity {
     const int t = h.elem;
     for (int f = 0; f < 4; ++f) {
       const int k = cavity_face(m, h.pt, t, f);
-      if (k == kFaceFan && face_orient(m, t, f, c.p) > 0) {
+      const int s = m.tsub[4 * t + f];
+      if (k == kFaceFan && s >= 0 && on_plane_of_subface(c, s)) {
+        // A subface that p does not split but whose plane p lies on (up to rounding): the
+        // new tetrahedron on it would be flat.
+        failed[h.pt] = kFailStar;
+      } else if (k == kFaceFan && face_orient(m, t, f, c.p) > 0) {
         const int* v = m.tv + 4 * t;
         const int a = v[face_corner(f, 0)], b = v[face_corner(f, 1)], d = v[face_corner(f, 2)];
         for (int e = 0; e < 3; ++e) {
           const int x = e == 0 ? b : a, y = e == 2 ? b : d;  // the edge opposite corner e
           FanNeighbour r;
-          if (!fan_neighbour(m, h.pt, t, f, x, y, r) || r.split >= 0) continue;
+          const bool inside = fan_neighbour(m, h.pt, t, f, x, y, r);
+          if (r.split >= 0 && !compute_subface_fan_edge(m, c, h.pt, r.split, edge_opposite(m, r.split, x, y))) {
+            // The face (x, y, p) would lie in the facet across new subfaces: xy is inside the
+            // subface cavity but a tetrahedron at xy is not in the cavity. It is split first.
+            failed[h.pt] = kFailStar;
+            exec::atomic_or(&m.tflag[t], kMakeRoom);
+          }
+          if (!inside || r.split >= 0) continue;
           int w = -1;  // the other new tetrahedron's corner off the shared face
           for (int q = 0; q < 3; ++q) {
             const int z = m.tv[4 * r.u + face_corner(r.g, q)];
@@ -611,11 +667,7 @@ struct LinkNew {
     const bool inside = fan_neighbour(m, j, t, f, x, y, r);
     int new_sub = -1;
     if (r.split >= 0) {
-      int e = 0;  // the edge xy of the split subface
-      for (int q = 0; q < 3; ++q) {
-        const int v = m.sv[3 * r.split + q];
-        if (v != x && v != y) e = q;
-      }
+      const int e = edge_opposite(m, r.split, x, y);
       new_sub = m.saux[r.split] + subfan_rank(m, r.split, e);
     }
     if (r.broken || (!inside && new_sub < 0)) {

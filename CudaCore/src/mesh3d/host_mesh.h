@@ -29,6 +29,9 @@ struct HostTetMesh {
                                     // sv1, sv2, apex) > 0), st[2s+1] the other side; -1 where
                                     // there is no tetrahedron (outside the domain).
   std::vector<int> sfacet;          // per subface: the facet it lies in
+  std::vector<int> fplane;          // 3 per facet: input points spanning its plane (its
+                                    // largest triangle), which points put on it are projected
+                                    // on; empty: not projected
 
   std::vector<int> seg;             // 2 per segment: endpoint point ids (input points)
   int input_points = 0;             // points [0, input_points) are the input's

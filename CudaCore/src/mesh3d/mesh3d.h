@@ -75,6 +75,7 @@ struct TetView {
   const int* vseg_begin;  // segments at input vertex v: vseg[vseg_begin[v] .. vseg_begin[v+1])
   const int* vseg;
   const std::uint8_t* sharp;  // per segment (host_mesh.h)
+  const int* fplane;          // 3 per facet (host_mesh.h), null: none
   float* prad;                // per point: protecting-ball radius
   int ntet, npts, nsub;
 };
@@ -88,7 +89,7 @@ struct DeviceTetMesh {
   Buf<int> pseg, pfacet;
   Buf<int> tv, tn, tsub, tflag, tregion, mark, aux;
   Buf<int> sv, st, sfacet, sflag, smark, saux;
-  Buf<int> seg, vseg_begin, vseg;
+  Buf<int> seg, vseg_begin, vseg, fplane;
   Buf<std::uint8_t> sharp;
   Buf<float> prad;
   int ntet = 0, npts = 0, nsub = 0;
@@ -99,8 +100,8 @@ struct DeviceTetMesh {
                    tn.data(),    tsub.data(),   tflag.data(), regions ? tregion.data() : nullptr,
                    mark.data(),  aux.data(),    sv.data(),    st.data(),     sfacet.data(),
                    sflag.data(), smark.data(),  saux.data(),  seg.data(),    vseg_begin.data(),
-                   vseg.data(),  sharp.data(),  prad.data(),  ntet,          npts,
-                   nsub};
+                   vseg.data(),  sharp.data(),  fplane.size() ? fplane.data() : nullptr,
+                   prad.data(),  ntet,          npts,          nsub};
   }
 
   void upload(const HostTetMesh& h) {
@@ -144,6 +145,7 @@ struct DeviceTetMesh {
       for (int k = 0; k < 2; ++k) list[fill[h.seg[2 * s + k]]++] = s;
     vseg_begin.upload(begin);
     vseg.upload(list);
+    fplane.upload(h.fplane);
     sharp.upload(h.sharp.empty() ? std::vector<std::uint8_t>(std::size_t(ns), 0) : h.sharp);
     prad.upload(h.prad.empty() ? std::vector<float>(std::size_t(npts), 0.0f) : h.prad);
   }
@@ -174,6 +176,7 @@ struct DeviceTetMesh {
     get(sfacet, nsub, h.sfacet);
     get(seg, seg.size(), h.seg);
     get(sharp, sharp.size(), h.sharp);
+    get(fplane, fplane.size(), h.fplane);
     get(prad, npts, h.prad);
     return h;
   }
@@ -260,6 +263,19 @@ GDR_HD_INLINE bool tri_circumcenter(const double* a, const double* b, const doub
   for (int k = 0; k < 3; ++k) out[k] = a[k] + (lc * nab[k] + lb * acn[k]) / den;
   return out[0] == out[0] && out[1] == out[1] && out[2] == out[2] && fabs(out[0]) < 1e300 &&
          fabs(out[1]) < 1e300 && fabs(out[2]) < 1e300;
+}
+
+// Moves p to the nearest point of the plane through a, b, c (unchanged when abc is flat).
+GDR_HD_INLINE void project_on_plane(const double* a, const double* b, const double* c, double* p) {
+  const double ab[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  const double ac[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  const double ap[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+  double n[3];
+  cross3(ab, ac, n);
+  const double nn = dot3(n, n);
+  if (!(nn > 0.0)) return;
+  const double h = dot3(ap, n) / nn;
+  for (int k = 0; k < 3; ++k) p[k] -= h * n[k];
 }
 
 // Does p lie strictly inside the diametral ball of triangle abc (the smallest sphere through

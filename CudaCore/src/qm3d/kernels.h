@@ -262,6 +262,12 @@ GDR_HD_INLINE void make_subface_candidate(const TetView& m, int s, unsigned id, 
   const int* sv = m.sv + 3 * s;
   double p[3];
   if (!m3d::tri_circumcenter(pt(m, sv[0]), pt(m, sv[1]), pt(m, sv[2]), p)) return;
+  if (m.fplane) {
+    // The circumcentre of a needle subface can lie far off its plane in rounded arithmetic;
+    // put it back on the facet's plane, spanned by input points.
+    const int* f = m.fplane + 3 * m.sfacet[s];
+    m3d::project_on_plane(pt(m, f[0]), pt(m, f[1]), pt(m, f[2]), p);
+  }
   const double r2 = m3d::dist2(p, pt(m, sv[0]));
   int u = s;
   for (int step = 0; step < step_limit; ++step) {

@@ -173,6 +173,7 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
   st.automatic_steiner_cap = options.max_steiner_points < 0 && params.max_steiner >= 0;
   params.strategies = strategies_from_environment();
   if (!options.refine) params.max_iterations = 0;
+  params.check_links = std::getenv("GDR_CHECK_LINKS") != nullptr;  // debugging: slow, checks every link each iteration
   Callbacks engine_cb = cb;
   if (cb.progress)  // iterations have no known total: report a slowly saturating fraction
     engine_cb.progress = [&cb, n = 0](double, const std::string& what) mutable {

@@ -296,6 +296,7 @@ ValidationReport validate_tetmesh(const TetMesh& mesh, const Surface* input,
     const double area_tol = 1e-6;
     const auto& IT = input->triangles;
     std::vector<std::uint8_t> facet_ok(IT.size(), 1);
+    std::vector<double> cover(IT.size(), 0.0);  // share of each triangle's area covered
 #pragma omp parallel for schedule(dynamic, 64)
     for (std::int64_t k = 0; k < static_cast<std::int64_t>(IT.size()); ++k) {
       const int a = mesh_vertex(IT[k][0]), b = mesh_vertex(IT[k][1]), c = mesh_vertex(IT[k][2]);
@@ -327,13 +328,15 @@ ValidationReport validate_tetmesh(const TetMesh& mesh, const Surface* input,
           for (const Keyed* g = run.first; g != run.second; ++g) visit(static_cast<int>(g->item / 3));
         }
       }
+      cover[k] = covered;
       if (std::fabs(covered - 1.0) > area_tol) facet_ok[k] = 0;
     }
     for (std::size_t k = 0; k < IT.size(); ++k) {
       if (facet_ok[k]) continue;
       ++r.missing_facets;
       problems.add("input triangle " + std::to_string(k) + " " + tri_text(IT[k]) +
-                   " is not covered by subfaces");
+                   " is not covered by subfaces (they cover " + std::to_string(100.0 * cover[k]) +
+                   "% of its area)");
     }
   }
 
