@@ -129,6 +129,7 @@ struct Engine {
   static constexpr int kClaimRounds = 8;  // claim rounds per iteration (grow_cavities)
   static constexpr std::size_t kStallWindow = 40, kSameBacklog = 6;
   std::vector<std::size_t> backlog;       // elements to split, per iteration
+  std::vector<int> points;                // points in the mesh, per iteration
 
   Engine(const EngineParams& p, const Callbacks& c) : params(p), cb(c) {}
 
@@ -158,13 +159,16 @@ struct Engine {
         res.stalled = true;
         break;
       }
-      // Stall detection: the elements left to split must shrink by a fiftieth every
-      // kStallWindow iterations; otherwise what is left cannot be split by this method (the
-      // points it needs keep failing) and the run ends, reporting them.
+      // Stall detection: every kStallWindow iterations the elements left to split must shrink
+      // by a fiftieth, or the mesh must grow by a quarter (refinement to a size bound first
+      // multiplies the elements to split); otherwise what is left cannot be split by this
+      // method (the points it needs keep failing) and the run ends, reporting them.
       // The same backlog for a few iterations in a row are the same elements failing again.
       backlog.push_back(nl);
+      points.push_back(dm.npts);
       const std::size_t n = backlog.size();
-      const bool shrinking = n <= kStallWindow || 50 * nl <= 49 * backlog[n - 1 - kStallWindow];
+      const bool shrinking = n <= kStallWindow || 50 * nl <= 49 * backlog[n - 1 - kStallWindow] ||
+                             4LL * dm.npts >= 5LL * points[n - 1 - kStallWindow];
       bool unchanged = n > kSameBacklog;
       for (std::size_t k = 1; unchanged && k <= kSameBacklog; ++k) unchanged = backlog[n - 1 - k] == nl;
       if (!shrinking || unchanged) {
