@@ -210,8 +210,9 @@ void check_closed(const EdgeTable& edges, const std::vector<int>& origin) {
   if (count)
     throw Error(Status::InvalidInput,
                 "the surface is open: edges with one triangle " + list_items(open, count) +
-                    ". This mesher needs closed surfaces; the restricted Delaunay mesher "
-                    "(gdr surface, vtkGPURestrictedDelaunay3D) meshes open ones");
+                    ". A tetrahedral mesh needs a closed surface: fill the holes first (ParaView's "
+                    "Fill Holes filter, vtkFillHolesFilter). Meshing open surfaces (restricted "
+                    "Delaunay refinement) is not available yet");
 }
 
 void check_self_intersections(const Plc& plc) {

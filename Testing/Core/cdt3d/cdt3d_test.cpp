@@ -156,14 +156,14 @@ TEST(CheckSurface, DegenerateTriangles) {
   EXPECT_TRUE(has(error_of(d).what(), "degenerate"));
 }
 
-TEST(CheckSurface, OpenBoundaryNamesEdgesAndSuggestsTheSurfaceMesher) {
+TEST(CheckSurface, OpenBoundaryNamesEdgesAndSaysHowToCloseIt) {
   Surface s = unit_cube();
   s.triangles.pop_back();
   const Error e = error_of(s);
   EXPECT_EQ(e.status(), Status::InvalidInput);
   EXPECT_TRUE(has(e.what(), "open")) << e.what();
   EXPECT_TRUE(has(e.what(), "(4, 6), (4, 7), (6, 7)")) << e.what();  // input vertex ids
-  EXPECT_TRUE(has(e.what(), "gdr surface")) << e.what();
+  EXPECT_TRUE(has(e.what(), "Fill Holes")) << e.what();  // what to do about it
   // The restricted mesher's checks let it through.
   cdt3d::CheckOptions open;
   open.require_closed = false;
