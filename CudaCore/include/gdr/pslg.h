@@ -14,6 +14,9 @@ struct Pslg {
   std::vector<Point2> points;
   std::vector<std::array<int, 2>> segments;
   std::vector<Point2> holes;
+  // The number of the first point (and segment) in the file it was read from (Triangle files
+  // count from 0 or 1): messages about the input number items as the file does.
+  int first_index = 0;
 };
 
 // A region seed (TetGen's regional attribute): the region of the domain that holds `point`

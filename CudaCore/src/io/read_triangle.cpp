@@ -39,12 +39,15 @@ std::vector<std::string> poly_input_files(const std::string& path) {
 Pslg read_poly(const std::string& path) {
   Pslg pslg;
   if (extension_of(path) == ".node") {
-    pslg.points = to_points2(read_node_file(path, 2));
+    const NodeList nodes = read_node_file(path, 2);
+    pslg.points = to_points2(nodes);
+    pslg.first_index = nodes.first_index;
     return pslg;
   }
   TextFile file(path);
   const NodeList nodes = read_poly_point_section(file, 2);
   pslg.points = to_points2(nodes);
+  pslg.first_index = nodes.first_index;
   read_segments(file, nodes, pslg.segments, nullptr);
   Tokens t;
   file.expect(t, 1, "the hole count header");

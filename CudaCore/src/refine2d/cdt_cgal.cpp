@@ -1,12 +1,14 @@
 // Initial constrained Delaunay triangulation on the CPU with CGAL (exact predicates), then
 // conversion to the engine's arrays. The only CGAL translation unit of the core.
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Constrained_triangulation_plus_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <CGAL/spatial_sort.h>
 
 #include <unordered_map>
+#include <unordered_set>
 
 #include "refine2d/input.h"
 
@@ -27,39 +29,99 @@ long long key(int a, int b) {
   return (static_cast<long long>(a) << 32) | static_cast<unsigned>(b);
 }
 
+// Inserts the points in spatial order (fast walks); vh[i] is point i's vertex.
+template <class Tr>
+void insert_points(Tr& tr, const std::vector<Point2>& pts,
+                   std::vector<typename Tr::Vertex_handle>& vh) {
+  const int n = static_cast<int>(pts.size());
+  vh.assign(n, typename Tr::Vertex_handle());
+  std::vector<int> order(n);
+  for (int i = 0; i < n; ++i) order[i] = i;
+  struct Traits {
+    const std::vector<Point2>* p;
+    using Point_2 = int;
+    struct Less_x_2 {
+      const std::vector<Point2>* p;
+      bool operator()(int a, int b) const { return (*p)[a].x < (*p)[b].x; }
+    };
+    struct Less_y_2 {
+      const std::vector<Point2>* p;
+      bool operator()(int a, int b) const { return (*p)[a].y < (*p)[b].y; }
+    };
+    Less_x_2 less_x_2_object() const { return Less_x_2{p}; }
+    Less_y_2 less_y_2_object() const { return Less_y_2{p}; }
+  };
+  CGAL::spatial_sort(order.begin(), order.end(), Traits{&pts});
+  typename Tr::Face_handle hint;
+  for (int i : order) {
+    auto v = tr.insert(K::Point_2(pts[i].x, pts[i].y), hint);
+    v->info() = i;
+    vh[i] = v;
+    hint = v->face();
+  }
+}
+
 }  // namespace
+
+void split_segments_at_intersections(CleanPslg& g) {
+  // CGAL's constrained triangulation with intersecting constraints (exact predicates): each
+  // crossing becomes a vertex at the intersection point rounded to the nearest double, or
+  // snapped to an endpoint within a few ulps of it (CGAL's rule), so that concurrent
+  // segments share one vertex; a constraint through an existing vertex, collinear overlaps
+  // and points on segments are split there. The constraint hierarchy gives each input
+  // segment's chain of vertices. Constrained edges are triangulation edges, so the chains
+  // cannot cross, overlap or pass through a vertex.
+  struct Info {
+    int id = -1;  // point index; -1 for a vertex CGAL created at an intersection
+    Info& operator=(int i) {
+      id = i;
+      return *this;
+    }
+  };
+  using Vb2 = CGAL::Triangulation_vertex_base_with_info_2<Info, K>;
+  using Fb2 = CGAL::Constrained_triangulation_face_base_2<K>;
+  using Tds2 = CGAL::Triangulation_data_structure_2<Vb2, Fb2>;
+  using Cdt2 = CGAL::Constrained_Delaunay_triangulation_2<K, Tds2, CGAL::Exact_predicates_tag>;
+  using Cdtp = CGAL::Constrained_triangulation_plus_2<Cdt2>;
+  Cdtp cdt;
+  std::vector<Cdtp::Vertex_handle> vh;
+  insert_points(cdt, g.points, vh);
+  std::vector<Cdtp::Constraint_id> cid(g.segments.size());
+  for (std::size_t s = 0; s < g.segments.size(); ++s)
+    cid[s] = cdt.insert_constraint(vh[g.segments[s][0]], vh[g.segments[s][1]]);
+  // New vertices, numbered after the points in the order the chains meet them.
+  auto index = [&](Cdtp::Vertex_handle v) {
+    if (v->info().id < 0) {
+      v->info().id = static_cast<int>(g.points.size());
+      g.points.push_back(Point2{v->point().x(), v->point().y()});
+    }
+    return v->info().id;
+  };
+  std::vector<std::array<int, 2>> segs;
+  std::vector<int> origin;
+  std::unordered_set<long long> seen;
+  for (std::size_t s = 0; s < g.segments.size(); ++s) {
+    int prev = -1;
+    for (auto it = cdt.vertices_in_constraint_begin(cid[s]);
+         it != cdt.vertices_in_constraint_end(cid[s]); ++it) {
+      const int v = index(*it);
+      // An overlap is kept once, with the first segment that covers it.
+      if (prev >= 0 && v != prev && seen.insert(key(prev, v)).second) {
+        segs.push_back({prev, v});
+        origin.push_back(g.segment_origin[s]);
+      }
+      prev = v;
+    }
+  }
+  g.segments.swap(segs);
+  g.segment_origin.swap(origin);
+}
 
 HostMesh initial_cdt(const CleanPslg& g, bool remove_exterior) {
   const int n = static_cast<int>(g.points.size());
   Cdt cdt;
-  std::vector<Cdt::Vertex_handle> vh(n);
-  {
-    // Insert in spatial order (fast walks), remembering each vertex's index.
-    std::vector<int> order(n);
-    for (int i = 0; i < n; ++i) order[i] = i;
-    struct Traits {
-      const std::vector<Point2>* p;
-      using Point_2 = int;
-      struct Less_x_2 {
-        const std::vector<Point2>* p;
-        bool operator()(int a, int b) const { return (*p)[a].x < (*p)[b].x; }
-      };
-      struct Less_y_2 {
-        const std::vector<Point2>* p;
-        bool operator()(int a, int b) const { return (*p)[a].y < (*p)[b].y; }
-      };
-      Less_x_2 less_x_2_object() const { return Less_x_2{p}; }
-      Less_y_2 less_y_2_object() const { return Less_y_2{p}; }
-    };
-    CGAL::spatial_sort(order.begin(), order.end(), Traits{&g.points});
-    Cdt::Face_handle hint;
-    for (int i : order) {
-      Cdt::Vertex_handle v = cdt.insert(K::Point_2(g.points[i].x, g.points[i].y), hint);
-      v->info() = i;
-      vh[i] = v;
-      hint = v->face();
-    }
-  }
+  std::vector<Cdt::Vertex_handle> vh;
+  insert_points(cdt, g.points, vh);
   std::unordered_map<long long, int> seg_of;
   seg_of.reserve(g.segments.size() * 2);
   for (std::size_t s = 0; s < g.segments.size(); ++s) {

@@ -60,63 +60,6 @@ bool conflict(const std::vector<Point2>& P, const std::array<int, 2>& s,
   return false;
 }
 
-// Splits segments at the conflicts found: crossings at their (rounded) intersection point,
-// touching vertices and overlap ends at the vertex.
-void split_conflicts(CleanPslg& g, const std::vector<SegmentConflict>& conflicts) {
-  std::vector<std::vector<int>> cuts(g.segments.size());
-  auto add_cut_if_inside = [&](int s, int v) {
-    const auto& sg = g.segments[s];
-    if (v == sg[0] || v == sg[1]) return;
-    if (pred::orient2d(xy(g.points, sg[0]), xy(g.points, sg[1]), xy(g.points, v)) == 0 &&
-        strictly_between(g.points[sg[0]], g.points[sg[1]], g.points[v]))
-      cuts[s].push_back(v);
-  };
-  for (const auto& c : conflicts) {
-    if (c.t < 0) {
-      add_cut_if_inside(c.s, c.point);
-      continue;
-    }
-    const auto s = g.segments[c.s], t = g.segments[c.t];
-    if (c.kind == SegmentConflict::Cross) {
-      const Point2 &a = g.points[s[0]], &b = g.points[s[1]], &p = g.points[t[0]], &q = g.points[t[1]];
-      const double den = (b.x - a.x) * (q.y - p.y) - (b.y - a.y) * (q.x - p.x);
-      const double u = ((p.x - a.x) * (q.y - p.y) - (p.y - a.y) * (q.x - p.x)) / den;
-      g.points.push_back(Point2{a.x + u * (b.x - a.x), a.y + u * (b.y - a.y)});
-      const int v = static_cast<int>(g.points.size()) - 1;
-      cuts[c.s].push_back(v);
-      cuts[c.t].push_back(v);
-    } else {
-      for (int v : {t[0], t[1]}) add_cut_if_inside(c.s, v);
-      for (int v : {s[0], s[1]}) add_cut_if_inside(c.t, v);
-    }
-  }
-  std::vector<std::array<int, 2>> segs;
-  std::vector<int> origin;
-  for (std::size_t s = 0; s < g.segments.size(); ++s) {
-    auto& cut = cuts[s];
-    const Point2 a = g.points[g.segments[s][0]], b = g.points[g.segments[s][1]];
-    auto param = [&](int v) {
-      return (g.points[v].x - a.x) * (b.x - a.x) + (g.points[v].y - a.y) * (b.y - a.y);
-    };
-    std::sort(cut.begin(), cut.end(), [&](int u, int v) { return param(u) < param(v); });
-    cut.erase(std::unique(cut.begin(), cut.end()), cut.end());
-    int prev = g.segments[s][0];
-    for (int v : cut) {
-      if (v != prev) {
-        segs.push_back({prev, v});
-        origin.push_back(g.segment_origin[s]);
-      }
-      prev = v;
-    }
-    if (prev != g.segments[s][1]) {
-      segs.push_back({prev, g.segments[s][1]});
-      origin.push_back(g.segment_origin[s]);
-    }
-  }
-  g.segments.swap(segs);
-  g.segment_origin.swap(origin);
-}
-
 // Indices 0..n-1 in parallel-sorted order of `less` (ties by index: stable).
 template <class Less>
 std::vector<int> sorted_indices(std::size_t n, const Less& less) {
@@ -299,7 +242,7 @@ void validate_refine2d_input(const Pslg& in, const Refine2dOptions& o) {
   std::size_t nbad = 0;
   for (std::size_t i = 0; i < in.points.size(); ++i)
     if (!std::isfinite(in.points[i].x) || !std::isfinite(in.points[i].y)) {
-      if (bad.size() < 10) bad.push_back(static_cast<long long>(i));
+      if (bad.size() < 10) bad.push_back(static_cast<long long>(i) + in.first_index);
       ++nbad;
     }
   if (nbad) invalid("points with NaN or infinite coordinates: " + list_ints(bad, nbad));
@@ -309,7 +252,7 @@ void validate_refine2d_input(const Pslg& in, const Refine2dOptions& o) {
   for (std::size_t s = 0; s < in.segments.size(); ++s) {
     const auto& sg = in.segments[s];
     if (sg[0] < 0 || sg[1] < 0 || sg[0] >= np || sg[1] >= np) {
-      if (bad.size() < 10) bad.push_back(static_cast<long long>(s));
+      if (bad.size() < 10) bad.push_back(static_cast<long long>(s) + in.first_index);
       ++nbad;
     }
   }
@@ -320,12 +263,13 @@ void validate_refine2d_input(const Pslg& in, const Refine2dOptions& o) {
     const auto& sg = in.segments[s];
     const Point2 &a = in.points[sg[0]], &b = in.points[sg[1]];
     if (sg[0] == sg[1] || (a.x == b.x && a.y == b.y))
-      invalid("segment " + std::to_string(s) + " has zero length (points " +
-              std::to_string(sg[0]) + " and " + std::to_string(sg[1]) + " coincide)");
+      invalid("segment " + std::to_string(s + in.first_index) + " has zero length (points " +
+              std::to_string(sg[0] + in.first_index) + " and " +
+              std::to_string(sg[1] + in.first_index) + " coincide)");
   }
   for (std::size_t h = 0; h < in.holes.size(); ++h)
     if (!std::isfinite(in.holes[h].x) || !std::isfinite(in.holes[h].y))
-      invalid("hole " + std::to_string(h) + " has NaN or infinite coordinates");
+      invalid("hole " + std::to_string(h + in.first_index) + " has NaN or infinite coordinates");
   // Three non-collinear points are needed for any triangle.
   std::size_t i1 = 0;
   while (i1 < in.points.size() && in.points[i1].x == in.points[0].x &&
@@ -341,11 +285,139 @@ void validate_refine2d_input(const Pslg& in, const Refine2dOptions& o) {
 }  // namespace gdr
 
 namespace gdr::r2d {
+namespace {
+
+// A few conflicts and their count, with segments and points numbered as in the input file.
+std::string conflict_message(const CleanPslg& g, const std::vector<SegmentConflict>& conflicts,
+                             std::size_t count_limit, bool after_split) {
+  const int base = g.first_index;
+  auto seg = [&](int s) {
+    return "segment " + std::to_string(g.segment_origin[s] + base);
+  };
+  auto pt = [&](int v) {
+    const int o = g.point_origin[v];
+    if (o >= 0) return "point " + std::to_string(o + base);
+    std::ostringstream s;
+    s << "intersection point (" << g.points[v].x << ", " << g.points[v].y << ")";
+    return s.str();
+  };
+  std::ostringstream msg;
+  msg.precision(17);
+  const std::size_t shown = 5;
+  msg << (after_split ? "internal error: segments still intersect after splitting them: "
+                      : "segments intersect other than at shared endpoints: ");
+  for (std::size_t i = 0; i < conflicts.size() && i < shown; ++i) {
+    const auto& c = conflicts[i];
+    if (i) msg << "; ";
+    if (c.t < 0) {
+      msg << pt(c.point) << " lies on " << seg(c.s);
+      continue;
+    }
+    msg << seg(c.s) << " and " << seg(c.t)
+        << (c.kind == SegmentConflict::Cross   ? " cross"
+            : c.kind == SegmentConflict::Touch ? " touch"
+                                               : " overlap");
+  }
+  if (conflicts.size() > shown)
+    msg << "; and " << conflicts.size() - shown << " more ("
+        << (conflicts.size() >= count_limit ? "at least " : "") << conflicts.size()
+        << " in all)";
+  if (!after_split) msg << " (use the split-intersections option to split them)";
+  return msg.str();
+}
+
+// Merges each intersection point (point_origin -1) into another point within `eps` in both
+// coordinates (an input point first): nearly concurrent segments, whose rounded endpoints
+// make them miss one point by a few ulps, would otherwise leave clusters of intersection
+// points 1e-16 apart that no refinement can resolve. Returns whether anything moved.
+bool merge_close_intersections(CleanPslg& g, double eps) {
+  const std::size_t n = g.points.size();
+  std::vector<int> order;
+  for (std::size_t v = 0; v < n; ++v) order.push_back(static_cast<int>(v));
+  // By x: a sweep over the points within eps in x.
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return g.points[a].x < g.points[b].x; });
+  std::vector<int> to(n);
+  for (std::size_t v = 0; v < n; ++v) to[v] = static_cast<int>(v);
+  bool changed = false;
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const int v = order[i];
+    if (g.point_origin[v] >= 0) continue;  // only intersection points move
+    int best = -1;
+    for (std::size_t j = i; j-- > 0;) {  // earlier in x within eps
+      const int u = order[j];
+      if (g.points[v].x - g.points[u].x > eps) break;
+      if (std::fabs(g.points[v].y - g.points[u].y) > eps || to[u] != u) continue;
+      if (best < 0 || (g.point_origin[u] >= 0 && g.point_origin[best] < 0)) best = u;
+    }
+    for (std::size_t j = i + 1; j < order.size(); ++j) {  // input points later in x
+      const int u = order[j];
+      if (g.points[u].x - g.points[v].x > eps) break;
+      if (g.point_origin[u] >= 0 && std::fabs(g.points[v].y - g.points[u].y) <= eps &&
+          (best < 0 || g.point_origin[best] < 0))
+        best = u;
+    }
+    if (best >= 0) {
+      to[v] = best;
+      changed = true;
+    }
+  }
+  if (!changed) return false;
+  std::vector<std::array<int, 2>> segs;
+  std::vector<int> origin;
+  for (std::size_t s = 0; s < g.segments.size(); ++s) {
+    const int a = to[g.segments[s][0]], b = to[g.segments[s][1]];
+    if (a == b) continue;
+    segs.push_back({a, b});
+    origin.push_back(g.segment_origin[s]);
+  }
+  g.segments.swap(segs);
+  g.segment_origin.swap(origin);
+  // Drop the merged points (intersection points only: input numbering is kept).
+  std::vector<int> renum(n, -1);
+  std::vector<Point2> pts;
+  std::vector<int> porig;
+  for (std::size_t v = 0; v < n; ++v)
+    if (to[v] == static_cast<int>(v)) {
+      renum[v] = static_cast<int>(pts.size());
+      pts.push_back(g.points[v]);
+      porig.push_back(g.point_origin[v]);
+    }
+  for (auto& sg : g.segments) sg = {renum[sg[0]], renum[sg[1]]};
+  g.points.swap(pts);
+  g.point_origin.swap(porig);
+  // Merging can make two segments the same: keep one.
+  std::vector<long long> keys;
+  std::vector<std::array<int, 2>> uniq;
+  std::vector<int> uorigin;
+  std::vector<char> keep(g.segments.size(), 1);
+  {
+    std::vector<std::pair<long long, int>> k;
+    for (std::size_t s = 0; s < g.segments.size(); ++s) {
+      const int a = std::min(g.segments[s][0], g.segments[s][1]);
+      const int b = std::max(g.segments[s][0], g.segments[s][1]);
+      k.push_back({(static_cast<long long>(a) << 32) | b, static_cast<int>(s)});
+    }
+    std::sort(k.begin(), k.end());
+    for (std::size_t i = 1; i < k.size(); ++i)
+      if (k[i].first == k[i - 1].first) keep[k[i].second] = 0;
+  }
+  for (std::size_t s = 0; s < g.segments.size(); ++s)
+    if (keep[s]) {
+      uniq.push_back(g.segments[s]);
+      uorigin.push_back(g.segment_origin[s]);
+    }
+  g.segments.swap(uniq);
+  g.segment_origin.swap(uorigin);
+  return true;
+}
+
+}  // namespace
 
 CleanPslg clean_input(const Pslg& in, const Refine2dOptions& o, const Callbacks& cb) {
   validate_refine2d_input(in, o);
   CleanPslg g;
   g.holes = in.holes;
+  g.first_index = in.first_index;
   // Duplicate points: sorted by coordinates (-0 == 0), each run of equal points maps to its
   // first in input order; the kept points stay in input order.
   const std::size_t np = in.points.size();
@@ -363,6 +435,7 @@ CleanPslg clean_input(const Pslg& in, const Refine2dOptions& o, const Callbacks&
     if (first[i] == static_cast<int>(i)) {
       remap[i] = static_cast<int>(g.points.size());
       g.points.push_back(P[i]);
+      g.point_origin.push_back(static_cast<int>(i));
     } else {
       remap[i] = remap[first[i]];  // first[i] < i: already numbered
       ++g.duplicates_merged;
@@ -376,37 +449,33 @@ CleanPslg clean_input(const Pslg& in, const Refine2dOptions& o, const Callbacks&
   }
   dedupe_segments(g, cb);
 
-  const std::size_t limit = 10;
-  for (int round = 0;; ++round) {
-    const auto conflicts =
-        find_segment_conflicts(g.points, g.segments, o.split_intersections ? 1u << 20 : limit);
-    if (conflicts.empty()) break;
-    if (!o.split_intersections || round == 8) {
-      std::ostringstream msg;
-      msg << "segments intersect other than at shared endpoints (first pairs, as input segment"
-             " index: points):";
-      for (const auto& c : conflicts) {
-        if (c.t < 0) {
-          const auto& s = g.segments[c.s];
-          msg << " point " << c.point << " lies on segment " << g.segment_origin[c.s] << " ("
-              << s[0] << "-" << s[1] << ");";
-          continue;
-        }
-        const char* what = c.kind == SegmentConflict::Cross   ? "cross"
-                           : c.kind == SegmentConflict::Touch ? "touch"
-                                                              : "overlap";
-        const auto &s = g.segments[c.s], &t = g.segments[c.t];
-        msg << " segment " << g.segment_origin[c.s] << " (" << s[0] << "-" << s[1] << ") and "
-            << g.segment_origin[c.t] << " (" << t[0] << "-" << t[1] << ") " << what << ";";
-      }
-      msg << (o.split_intersections ? " (could not be split)"
-                                    : " use the split-intersections option to split them");
-      throw Error(Status::SelfIntersectingInput, msg.str());
+  // Conflicts: with split-intersections, CGAL's constrained triangulation splits every
+  // segment at all of them at once (exact predicates, consistent rounding); the result is
+  // checked again. Without it they are refused, naming a few.
+  const std::size_t count_limit = std::size_t(1) << 22;
+  // (With splitting, one conflict is enough to know that the segments must be split.)
+  auto conflicts =
+      find_segment_conflicts(g.points, g.segments, o.split_intersections ? 1 : count_limit);
+  if (conflicts.empty()) return g;
+  if (o.split_intersections) {
+    // Intersection points closer than 2^-40 of the extent are merged (snap rounding) and
+    // the result split again, until nothing moves (a few rounds).
+    double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+    for (const Point2& p : g.points) {
+      x0 = std::min(x0, p.x), x1 = std::max(x1, p.x);
+      y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
     }
-    split_conflicts(g, conflicts);
-    dedupe_segments(g, cb);
+    const double eps = std::ldexp(std::max(x1 - x0, y1 - y0), -40);
+    for (int round = 0; round < 8; ++round) {
+      split_segments_at_intersections(g);
+      g.point_origin.resize(g.points.size(), -1);
+      if (round == 7 || !merge_close_intersections(g, eps)) break;  // ends split
+    }
+    conflicts = find_segment_conflicts(g.points, g.segments, count_limit);
+    if (conflicts.empty()) return g;
   }
-  return g;
+  throw Error(o.split_intersections ? Status::InternalError : Status::SelfIntersectingInput,
+              conflict_message(g, conflicts, count_limit, o.split_intersections));
 }
 
 }  // namespace gdr::r2d

@@ -17,12 +17,20 @@ struct CleanPslg {
   std::vector<Point2> points;
   std::vector<std::array<int, 2>> segments;
   std::vector<int> segment_origin;  // input segment each cleaned segment comes from
+  std::vector<int> point_origin;    // input point of each point (-1: an intersection point)
+  int first_index = 0;              // the input file's numbering (Pslg::first_index)
   std::vector<Point2> holes;
   long long duplicates_merged = 0;
 };
 
 // Throws InvalidInput / SelfIntersectingInput naming the offending items.
 CleanPslg clean_input(const Pslg& input, const Refine2dOptions& options, const Callbacks& cb);
+
+// Splits the segments at every crossing, touching point, overlap and point lying on them,
+// with CGAL's constrained triangulation (exact predicates; intersection points rounded to the
+// nearest double or snapped to a vertex within a few ulps, so concurrent segments share one
+// point). New points are appended (point_origin -1); segment_origin is kept.
+void split_segments_at_intersections(CleanPslg& pslg);
 
 // Constrained Delaunay triangulation of the cleaned PSLG. Convex-hull edges that are not
 // segments become extra segments (as Triangle does), unless the exterior is removed.

@@ -427,6 +427,79 @@ TEST_P(Refine2d, SplitIntersectionsOption) {
   mesh(on_segment, o);
 }
 
+// Issue 9: any arrangement of segments is split, not only simple crossings: concurrent
+// segments (3 and 50 through one point segfaulted in CGAL or hung; 4 concurrent lines were
+// left "could not be split"), and a soup of random segments with many crossings.
+TEST_P(Refine2d, SplitIntersectionsAnyArrangement) {
+  auto o = options();
+  o.split_intersections = true;
+  auto star = [](int n, double cx, double cy) {
+    Pslg g;
+    for (int k = 0; k < n; ++k) {
+      const double t = 3.14159265358979323846 * k / n + 0.1;
+      g.points.push_back({cx + std::cos(t), cy + std::sin(t)});
+      g.points.push_back({cx - std::cos(t), cy - std::sin(t)});
+      g.segments.push_back({2 * k, 2 * k + 1});
+    }
+    return g;
+  };
+  for (const int n : {3, 50}) {
+    SCOPED_TRACE("star of " + std::to_string(n));
+    const auto r = mesh(star(n, 0.3, -0.2), o);
+    // One shared centre (near (0.3, -0.2)): 2n ends + 1 point before refinement.
+    o.refine = false;
+    const auto cdt = mesh(star(n, 0.3, -0.2), o);
+    o.refine = true;
+    EXPECT_EQ(cdt.mesh.points.size(), static_cast<std::size_t>(2 * n + 1));
+    EXPECT_GE(r.mesh.points.size(), cdt.mesh.points.size());  // a 3-star is 60 degrees
+  }
+  {
+    SCOPED_TRACE("four concurrent lines with exact intersection (0.25, 0.75)");
+    Pslg g;
+    const double d[4][2] = {{1, 0}, {0, 1}, {1, 1}, {1, -2}};
+    for (int k = 0; k < 4; ++k) {
+      g.points.push_back({0.25 - d[k][0], 0.75 - d[k][1]});
+      g.points.push_back({0.25 + d[k][0], 0.75 + d[k][1]});
+      g.segments.push_back({2 * k, 2 * k + 1});
+    }
+    o.refine = false;
+    const auto cdt = mesh(g, o);
+    o.refine = true;
+    ASSERT_EQ(cdt.mesh.points.size(), 9u);
+    EXPECT_EQ(cdt.mesh.points[8].x, 0.25);  // the exact intersection, shared by all four
+    EXPECT_EQ(cdt.mesh.points[8].y, 0.75);
+    mesh(g, o);
+  }
+  {
+    SCOPED_TRACE("soup of 150 random segments");
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<double> u(0, 1);
+    Pslg g;
+    for (int k = 0; k < 150; ++k) {
+      for (int e = 0; e < 2; ++e) g.points.push_back({u(rng), u(rng)});
+      g.segments.push_back({2 * k, 2 * k + 1});
+    }
+    const auto r = mesh(g, o);
+    EXPECT_GT(r.stats.output_points, 1000);
+    // Without the option: refused with a short message, a few pairs and the count, numbered
+    // as in the input file.
+    o.split_intersections = false;
+    g.first_index = 1;
+    std::string msg;
+    try {
+      gdr::refine_2d(g, o);
+      ADD_FAILURE() << "crossing segments accepted";
+    } catch (const gdr::Error& e) {
+      EXPECT_EQ(e.status(), gdr::Status::SelfIntersectingInput);
+      msg = e.what();
+    }
+    EXPECT_LT(msg.size(), 400u) << msg;
+    EXPECT_NE(msg.find(" in all)"), std::string::npos) << msg;
+    EXPECT_EQ(msg.find("segment 0 "), std::string::npos) << msg;  // numbered from 1
+    o.split_intersections = true;
+  }
+}
+
 TEST_P(Refine2d, SharedDataPslgs) {
   const std::filesystem::path dir = std::filesystem::path(GDR_SHARED_DATA_DIR) / "pslg";
   if (!std::filesystem::exists(dir)) GTEST_SKIP() << "no shared data at " << dir;
