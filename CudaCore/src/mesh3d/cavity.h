@@ -440,13 +440,18 @@ struct CheckCavity {
     for (int f = 0; f < 4; ++f) {
       const int k = cavity_face(m, h.pt, t, f);
       const int s = m.tsub[4 * t + f];
+      const double side = k == kFaceFan ? face_orient(m, t, f, c.p) : 0.0;
       if (k == kFaceFan && s >= 0 && on_plane_of_subface(c, s)) {
         // A subface that p does not split but whose plane p lies on (up to rounding): the
         // new tetrahedron on it would be flat.
         failed[h.pt] = kFailStar;
-      } else if (k == kFaceFan && face_orient(m, t, f, c.p) > 0) {
+      } else if (k == kFaceFan && side > 0) {
         const int* v = m.tv + 4 * t;
         const int a = v[face_corner(f, 0)], b = v[face_corner(f, 1)], d = v[face_corner(f, 2)];
+        if (rounding_flat(pt(m, a), pt(m, b), pt(m, d), c.p, side)) {
+          failed[h.pt] = kFailStar;  // its tetrahedron on this face would be flat
+          exec::atomic_or(&m.tflag[t], kMakeRoom);
+        }
         for (int e = 0; e < 3; ++e) {
           const int x = e == 0 ? b : a, y = e == 2 ? b : d;  // the edge opposite corner e
           FanNeighbour r;

@@ -365,6 +365,19 @@ GDR_HD_INLINE double face_orient(const TetView& m, int t, int f, const double* p
                         pt(m, q[face_corner(f, 2)]), p);
 }
 
+// Is the tetrahedron (a, b, c, p) of signed 6-volume vol6 flat up to rounding (its height
+// below 1e-10 of its longest edge)? Points meant to lie on a facet or segment are rounded
+// off it; a tetrahedron joining one to its own facet would be such a sliver of zero volume,
+// and a surface folded over itself within the facet's plane.
+GDR_HD_INLINE bool rounding_flat(const double* a, const double* b, const double* c, const double* p,
+                                 double vol6) {
+  const double* v[4] = {a, b, c, p};
+  double l2 = 0;
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j) l2 = fmax(l2, dist2(v[i], v[j]));
+  return fabs(vol6) < 1e-10 * l2 * sqrt(l2);
+}
+
 GDR_HD_INLINE double tet_insphere(const TetView& m, int t, const double* p) {
   const int* q = m.tv + 4 * t;
   return pred::insphere(pt(m, q[0]), pt(m, q[1]), pt(m, q[2]), pt(m, q[3]), p);
