@@ -144,6 +144,14 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
   };
 
   progress(0.0, "checking input");
+  if (cb.warning) {
+    long long n = 0;
+    for (const auto& r : unscaled.regions) n += r.max_volume > 0;
+    if (n)  // refinement applies one volume bound to the whole domain (not yet per region)
+      cb.warning(std::to_string(n) + " region seed(s) give a maximum volume, which this mesher does "
+                 "not apply per region yet: it is ignored; use the maximum volume option for the "
+                 "whole domain");
+  }
   const cdt3d::Plc plc = cdt3d::check_surface(input, {}, cb);
   st.input_seconds = since(t_start);
   st.duplicate_points_merged = plc.duplicate_points_merged;
