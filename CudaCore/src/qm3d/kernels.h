@@ -22,6 +22,12 @@ struct Criteria {
   double cos_min_dihedral = 0;  // cos of the dihedral bound; used when dihedral is on
   int dihedral = 0;             // 1: a dihedral angle below the bound makes a tetrahedron bad
   int step_limit = 4096;        // point-location walk bound (dropped beyond it)
+  // Volume bounds of regions (by region attribute; TetGen's regional -a), kept by value so
+  // that kernels on either backend read them without device buffers.
+  static constexpr int kMaxRegionBounds = 32;
+  int region_bounds = 0;
+  int region_attribute[kMaxRegionBounds] = {};
+  double region_volume6[kMaxRegionBounds] = {};
 };
 
 // Classification of a tetrahedron against the criteria.
@@ -80,7 +86,11 @@ GDR_HD_INLINE bool small_dihedral(const TetView& m, int t, double cos_bound) {
 }
 
 GDR_HD_INLINE int classify_tet(const TetView& m, int t, const Criteria& c, const TetShape& s) {
-  if (c.max_volume6 > 0 && s.volume6 > c.max_volume6) return kTooBig;
+  double v6 = c.max_volume6;
+  if (c.region_bounds && m.tregion)
+    for (int k = 0; k < c.region_bounds; ++k)
+      if (c.region_attribute[k] == m.tregion[t]) v6 = v6 > 0 ? fmin(v6, c.region_volume6[k]) : c.region_volume6[k];
+  if (v6 > 0 && s.volume6 > v6) return kTooBig;
   if (c.max_radius_edge2 > 0 && s.r2 > c.max_radius_edge2 * s.lmin2) return kBad;
   if (c.dihedral && small_dihedral(m, t, c.cos_min_dihedral)) return kBad;
   return kGood;

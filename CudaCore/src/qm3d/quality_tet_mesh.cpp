@@ -23,13 +23,39 @@ constexpr double kPi = 3.14159265358979323846;
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-qm3d::Criteria make_criteria(const QualityTetOptions& o) {
+// `input`: the scaled surface, whose region seeds may bound the volume per region (the
+// smallest bound of the seeds of one attribute applies to it).
+qm3d::Criteria make_criteria(const QualityTetOptions& o, const Surface& input) {
   qm3d::Criteria c;
   c.max_radius_edge2 = o.radius_edge_ratio * o.radius_edge_ratio;
   c.max_volume6 = 6.0 * o.max_volume;
   c.dihedral = o.min_dihedral_angle > 0 ? 1 : 0;
   c.cos_min_dihedral = std::cos(o.min_dihedral_angle * kPi / 180.0);
+  for (const RegionSeed& r : input.regions) {
+    if (!(r.max_volume > 0)) continue;
+    int k = 0;
+    while (k < c.region_bounds && c.region_attribute[k] != r.attribute) ++k;
+    if (k == c.region_bounds) {
+      if (k == qm3d::Criteria::kMaxRegionBounds)
+        throw Error(Status::InvalidInput, "more than " + std::to_string(k) +
+                                              " region attributes with a maximum volume; give at most " +
+                                              std::to_string(k) + ", or one --max-volume for all");
+      c.region_attribute[k] = r.attribute;
+      c.region_volume6[k] = 6.0 * r.max_volume;
+      ++c.region_bounds;
+    } else {
+      c.region_volume6[k] = std::min(c.region_volume6[k], 6.0 * r.max_volume);
+    }
+  }
   return c;
+}
+
+// The smallest volume bound anywhere (0: none).
+double smallest_volume_bound(const QualityTetOptions& o, const Surface& input) {
+  double v = o.max_volume;
+  for (const RegionSeed& r : input.regions)
+    if (r.max_volume > 0) v = v > 0 ? std::min(v, r.max_volume) : r.max_volume;
+  return v;
 }
 
 // Design strategies switched off for a measurement: GDR_DISABLE=s1,s3,s5,touching,block_rounds,worst_first
@@ -57,9 +83,9 @@ qm3d::Strategies strategies_from_environment() {
 
 // Rough output size, for Auto and for the automatic cap: a quality mesh has about six
 // tetrahedra per point and at least the CDT's; a volume bound asks for volume / bound more.
-std::size_t estimate_tets(const m3d::HostTetMesh& m, double volume, const QualityTetOptions& o) {
+std::size_t estimate_tets(const m3d::HostTetMesh& m, double volume, double max_volume) {
   double est = std::max(6.0 * m.points(), static_cast<double>(m.tets()));
-  if (o.max_volume > 0) est = std::max(est, 1.5 * volume / o.max_volume);
+  if (max_volume > 0) est = std::max(est, 1.5 * volume / max_volume);
   return est > 1e15 ? std::size_t(1e15) : static_cast<std::size_t>(est);
 }
 
@@ -144,14 +170,6 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
   };
 
   progress(0.0, "checking input");
-  if (cb.warning) {
-    long long n = 0;
-    for (const auto& r : unscaled.regions) n += r.max_volume > 0;
-    if (n)  // refinement applies one volume bound to the whole domain (not yet per region)
-      cb.warning(std::to_string(n) + " region seed(s) give a maximum volume, which this mesher does "
-                 "not apply per region yet: it is ignored; use the maximum volume option for the "
-                 "whole domain");
-  }
   const cdt3d::Plc plc = cdt3d::check_surface(input, {}, cb);
   st.input_seconds = since(t_start);
   st.duplicate_points_merged = plc.duplicate_points_merged;
@@ -169,13 +187,13 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
   if (aborted()) throw Error(Status::Aborted, "aborted by the caller");
   qm3d::find_sharp_features(mesh);
 
-  const std::size_t estimated = estimate_tets(mesh, plc.volume, options);
+  const std::size_t estimated = estimate_tets(mesh, plc.volume, smallest_volume_bound(options, input));
   st.backend_used = resolve_backend(options.backend, estimated, gpu_min_tets(options));
   if (st.backend_used == Backend::Gpu) st.device_name = device_info().name;
   else st.device_name = "CPU (" + std::to_string(cpu_threads()) + " OpenMP threads)";
 
   qm3d::EngineParams params;
-  params.criteria = make_criteria(options);
+  params.criteria = make_criteria(options, input);
   params.max_steiner = automatic_steiner_cap(mesh, estimated, options);
   st.steiner_cap = params.max_steiner;
   st.automatic_steiner_cap = options.max_steiner_points < 0 && params.max_steiner >= 0;

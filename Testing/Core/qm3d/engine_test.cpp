@@ -8,6 +8,7 @@
 
 #include "box_mesh.h"
 #include "gdr/backend.h"
+#include "gdr/qm3d.h"
 #include "gdr/validate.h"
 #include "mesh3d/host_mesh.h"
 #include "qm3d/engine_dispatch.h"
@@ -154,3 +155,49 @@ TEST(Qm3dEngine, LargerBoxAtRadiusEdge) {
 }
 
 }  // namespace
+
+// TetGen's regional volume bounds: a 2 x 1 x 1 box split by an internal facet at x = 1 into
+// region 1 (volume bound 0.002 from its seed) and region 2 (no bound). Through the facade,
+// on every backend.
+TEST(QualityTetMesh, RegionSeedVolumeBoundsApplyPerRegion) {
+  gdr::Surface s;
+  for (double x : {0.0, 1.0, 2.0})
+    for (double y : {0.0, 1.0})
+      for (double z : {0.0, 1.0}) s.points.push_back({x, y, z});
+  auto id = [](int i, int j, int k) { return 4 * i + 2 * j + k; };
+  auto quad = [&](int a, int b, int c, int d) {
+    s.triangles.push_back({a, b, c});
+    s.triangles.push_back({a, c, d});
+  };
+  for (int i = 0; i < 2; ++i) {  // the four sides of each half
+    quad(id(i, 0, 0), id(i + 1, 0, 0), id(i + 1, 0, 1), id(i, 0, 1));
+    quad(id(i, 1, 0), id(i, 1, 1), id(i + 1, 1, 1), id(i + 1, 1, 0));
+    quad(id(i, 0, 0), id(i, 1, 0), id(i + 1, 1, 0), id(i + 1, 0, 0));
+    quad(id(i, 0, 1), id(i + 1, 0, 1), id(i + 1, 1, 1), id(i, 1, 1));
+  }
+  for (int i = 0; i < 3; ++i) quad(id(i, 0, 0), id(i, 0, 1), id(i, 1, 1), id(i, 1, 0));  // x = 0, 1, 2
+  s.regions.push_back({{0.5, 0.5, 0.5}, 1, 0.002});
+  s.regions.push_back({{1.5, 0.5, 0.5}, 2, 0.0});
+  for (gdr::Backend b : backends()) {
+    gdr::QualityTetOptions o;
+    o.backend = b;
+    const gdr::QualityTetResult r = gdr::quality_tet_mesh(s, o, {});
+    const gdr::TetMesh& m = r.mesh;
+    ASSERT_EQ(m.tet_region.size(), m.tets.size());
+    double vmax[3] = {0, 0, 0}, vsum[3] = {0, 0, 0};
+    for (std::size_t t = 0; t < m.tets.size(); ++t) {
+      const auto& q = m.tets[t];
+      const double v = gdr::tet_volume(m.points[q[0]], m.points[q[1]], m.points[q[2]], m.points[q[3]]);
+      const int g = m.tet_region[t];
+      ASSERT_TRUE(g == 1 || g == 2) << g;
+      vmax[g] = std::max(vmax[g], v);
+      vsum[g] += v;
+    }
+    EXPECT_LE(vmax[1], 0.002 * (1 + 1e-9));
+    EXPECT_GT(vmax[2], 0.002);  // no bound there
+    EXPECT_NEAR(vsum[1], 1.0, 1e-9);
+    EXPECT_NEAR(vsum[2], 1.0, 1e-9);
+    const gdr::ValidationReport rep = gdr::validate_tetmesh(m, &s, {});
+    EXPECT_TRUE(rep.valid) << rep.summary();
+  }
+}
