@@ -618,6 +618,7 @@ void vtkGDRConversion::AddSeeds(vtkDataSet* seeds, gdr::Surface& surface)
     return;
   }
   vtkDataArray* attribute = seeds->GetPointData()->GetArray("RegionAttribute");
+  vtkDataArray* maxVolume = seeds->GetPointData()->GetArray("RegionMaximumVolume");
   for (vtkIdType id = 0; id < seeds->GetNumberOfPoints(); ++id)
   {
     double p[3];
@@ -630,6 +631,10 @@ void vtkGDRConversion::AddSeeds(vtkDataSet* seeds, gdr::Surface& surface)
     gdr::RegionSeed seed;
     seed.point = { p[0], p[1], p[2] };
     seed.attribute = static_cast<int>(std::lround(attribute->GetComponent(id, 0)));
+    if (maxVolume)
+    {
+      seed.max_volume = maxVolume->GetComponent(id, 0); // checked (finite, >= 0) by the core
+    }
     surface.regions.push_back(seed);
   }
 }

@@ -17,8 +17,9 @@
  * values are kept as internal facets and each part of the volume gets its Region value.
  * Input (port 1, optional, repeatable, any vtkDataSet): seed points. A dataset with the
  * point array RegionAttribute gives region seeds (the region around each point gets that
- * attribute in the cell array Region); a dataset without it gives hole seeds (the region
- * around each point is left empty).
+ * attribute in the cell array Region; an optional point array RegionMaximumVolume bounds
+ * the volume of its tetrahedra, 0 for none); a dataset without it gives hole seeds (the
+ * region around each point is left empty).
  *
  * Output (port 0, vtkUnstructuredGrid): the tetrahedra. Cell data: RadiusEdgeRatio
  * (circumradius over shortest edge; 0.61 for a regular tetrahedron), MinDihedralAngle and

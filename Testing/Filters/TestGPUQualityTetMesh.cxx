@@ -636,6 +636,32 @@ void TestSeeds()
   }
   CHECK(std::fabs(regionVolume[1] - cavity) <= 1e-9 * cavity);
   CHECK(std::fabs(regionVolume[0] - EnclosedVolume(input)) <= 1e-9 * regionVolume[0]);
+
+  // RegionMaximumVolume bounds the tetrahedra of the seed's region only.
+  double largest[2] = { 0, 0 };
+  for (vtkIdType t = 0; t < region->GetNumberOfTuples(); ++t)
+  {
+    const int k = region->GetComponent(t, 0) == 5 ? 1 : 0;
+    largest[k] = std::max(largest[k], tetVolume->GetComponent(t, 0));
+  }
+  const double bound = 0.25 * largest[1];
+  vtkNew<vtkDoubleArray> maxVolume;
+  maxVolume->SetName("RegionMaximumVolume");
+  maxVolume->InsertNextValue(bound);
+  regions->GetPointData()->AddArray(maxVolume);
+  filter->Update();
+  CHECK(log.Errors.empty());
+  CheckOutputs(filter);
+  region = filter->GetOutput()->GetCellData()->GetArray("Region");
+  tetVolume = filter->GetOutput()->GetCellData()->GetArray("Volume");
+  double bounded[2] = { 0, 0 };
+  for (vtkIdType t = 0; t < region->GetNumberOfTuples(); ++t)
+  {
+    const int k = region->GetComponent(t, 0) == 5 ? 1 : 0;
+    bounded[k] = std::max(bounded[k], tetVolume->GetComponent(t, 0));
+  }
+  CHECK(bounded[1] <= bound * (1 + 1e-6));
+  CHECK(bounded[0] > bound); // the shell has no bound of its own
 }
 
 void TestClamping()
