@@ -125,14 +125,7 @@ Args2d parse_2d(const std::vector<std::string>& args) {
       {"split-intersections", 0, false,
        [&](const std::string&) { a.options.split_intersections = true; }},
       {"cdt-only", 0, false, [&](const std::string&) { a.options.refine = false; }},
-      {"backend", 0, true,
-       [&](const std::string& v) {
-         try {
-           a.options.backend = backend_from_string(v);
-         } catch (const Error& e) {
-           throw UsageError(cmd, e.what());
-         }
-       }},
+      {"backend", 0, true, [&](const std::string& v) { a.options.backend = parse_backend(cmd, v); }},
       {"check", 0, false, [&](const std::string&) { a.check = true; }},
       {"stats-json", 0, true, [&](const std::string& v) { a.stats_json = v; }},
       {"quiet", 'q', false, [&](const std::string&) { a.quiet = true; }},
@@ -140,24 +133,13 @@ Args2d parse_2d(const std::vector<std::string>& args) {
   };
   const auto positional = parse_options(cmd, args, specs);
   if (a.help) return a;
-  if (positional.empty()) throw UsageError(cmd, "missing INPUT file");
-  if (positional.size() > 1) throw UsageError(cmd, "unexpected argument '" + positional[1] + "'");
-  a.input = positional[0];
+  a.input = single_input(cmd, positional);
   if (!a.output.empty() && !output_extension_supported(a.output))
     throw UsageError(cmd, "cannot tell the output format of '" + a.output +
                               "': use .vtu, .vtp, .node or .ele");
   return a;
 }
 
-struct CliTimes {
-  double read = 0, write = 0, check = 0, wall = 0;
-};
-
-std::string backend_line(const Refine2dStats& s) {
-  if (s.backend_used == Backend::Gpu)
-    return "gpu (" + (s.device_name.empty() ? std::string("CUDA device") : s.device_name) + ")";
-  return "cpu (OpenMP, " + std::to_string(cpu_threads()) + " threads)";
-}
 
 void print_summary(const Args2d& a, const Pslg& input, const Refine2dResult& r,
                    const ValidationReport* report, const CliTimes& t) {
@@ -179,7 +161,7 @@ void print_summary(const Args2d& a, const Pslg& input, const Refine2dResult& r,
     info.row({"", std::string("stopped at the ") + (s.automatic_steiner_cap ? "automatic " : "") +
                       "cap of " + with_commas(s.steiner_cap)});
   if (s.stalled) info.row({"", "stalled: bad elements remain that no point could fix"});
-  info.row({"backend", backend_line(s)});
+  info.row({"backend", backend_line(s.backend_used, s.device_name)});
   info.row({"peak device memory", s.backend_used == Backend::Gpu ? bytes(s.peak_device_bytes)
                                                                   : "- (CPU backend)"});
   info.row({"min angle", fixed(s.min_angle_deg, 2) + " deg (bound " +

@@ -123,14 +123,7 @@ ArgsTet parse_tet(const std::vector<std::string>& args) {
            throw UsageError(cmd, "--max-steiner must be >= 0");
        }},
       {"cdt-only", 0, false, [&](const std::string&) { a.options.refine = false; }},
-      {"backend", 0, true,
-       [&](const std::string& v) {
-         try {
-           a.options.backend = backend_from_string(v);
-         } catch (const Error& e) {
-           throw UsageError(cmd, e.what());
-         }
-       }},
+      {"backend", 0, true, [&](const std::string& v) { a.options.backend = parse_backend(cmd, v); }},
       {"check", 0, false, [&](const std::string&) { a.check = true; }},
       {"stats-json", 0, true, [&](const std::string& v) { a.stats_json = v; }},
       {"histogram", 0, true, [&](const std::string& v) { a.histogram = v; }},
@@ -139,24 +132,13 @@ ArgsTet parse_tet(const std::vector<std::string>& args) {
   };
   const auto positional = parse_options(cmd, args, specs);
   if (a.help) return a;
-  if (positional.empty()) throw UsageError(cmd, "missing INPUT file");
-  if (positional.size() > 1) throw UsageError(cmd, "unexpected argument '" + positional[1] + "'");
-  a.input = positional[0];
+  a.input = single_input(cmd, positional);
   if (!a.output.empty() && !output_extension_supported(a.output))
     throw UsageError(cmd, "cannot tell the output format of '" + a.output +
                               "': use .vtu, .mesh, .node, .ele or .face");
   return a;
 }
 
-struct CliTimes {
-  double read = 0, write = 0, check = 0, wall = 0;
-};
-
-std::string backend_line(const QualityTetStats& s) {
-  if (s.backend_used == Backend::Gpu)
-    return "gpu (" + (s.device_name.empty() ? std::string("CUDA device") : s.device_name) + ")";
-  return "cpu (OpenMP, " + std::to_string(cpu_threads()) + " threads)";
-}
 
 // A ratio that may be huge (a flat tetrahedron's): fixed decimals, or 3 digits and exponent.
 std::string ratio(double v) {
@@ -222,7 +204,7 @@ void print_summary(const ArgsTet& a, const Surface& input, const QualityTetResul
     info.row({"", std::string("stopped at the ") + (s.automatic_steiner_cap ? "automatic " : "") +
                       "cap of " + with_commas(s.steiner_cap)});
   if (s.stalled) info.row({"", "stalled: bad elements remain that no point could fix"});
-  info.row({"backend", backend_line(s)});
+  info.row({"backend", backend_line(s.backend_used, s.device_name)});
   info.row({"peak device memory", s.backend_used == Backend::Gpu ? bytes(s.peak_device_bytes)
                                                                   : "- (CPU backend)"});
   info.row({"dihedral angles", "min " + fixed(s.min_dihedral_deg, 2) + " deg (" +

@@ -9,6 +9,25 @@
 
 namespace gdr::cli {
 
+Backend parse_backend(const std::string& command, const std::string& value) {
+  try {
+    return backend_from_string(value);
+  } catch (const Error& e) {
+    throw UsageError(command, e.what());
+  }
+}
+
+std::string single_input(const std::string& command, const std::vector<std::string>& positional) {
+  if (positional.empty()) throw UsageError(command, "missing INPUT file");
+  if (positional.size() > 1) throw UsageError(command, "unexpected argument '" + positional[1] + "'");
+  return positional[0];
+}
+
+std::string backend_line(Backend used, const std::string& device_name) {
+  if (used == Backend::Gpu) return "gpu (" + (device_name.empty() ? std::string("CUDA device") : device_name) + ")";
+  return "cpu (OpenMP, " + std::to_string(cpu_threads()) + " threads)";
+}
+
 bool same_file(const std::string& a, const std::string& b) {
   namespace fs = std::filesystem;
   std::error_code ec;

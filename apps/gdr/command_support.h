@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "gdr/backend.h"
+
 namespace gdr::cli {
 
 // A file a command line writes, and the option that names it (for messages).
@@ -37,5 +39,19 @@ int run_interruptible(const std::string& output, const std::function<int(bool& w
 
 // Seconds since t0.
 double since(std::chrono::steady_clock::time_point t0);
+
+// Wall-clock seconds of a command's own steps around the mesher.
+struct CliTimes {
+  double read = 0, write = 0, check = 0, wall = 0;
+};
+
+// The value of --backend (UsageError of `command` when it names none).
+Backend parse_backend(const std::string& command, const std::string& value);
+
+// The one INPUT operand of a command line (UsageError when missing or not alone).
+std::string single_input(const std::string& command, const std::vector<std::string>& positional);
+
+// "gpu (device name)" or "cpu (OpenMP, N threads)", for a run's statistics.
+std::string backend_line(Backend used, const std::string& device_name);
 
 }  // namespace gdr::cli
