@@ -130,6 +130,7 @@ struct Engine {
   static constexpr std::size_t kStallWindow = 40, kSameBacklog = 6;
   std::vector<std::size_t> backlog;       // elements to split, per iteration
   std::vector<int> points;                // points in the mesh, per iteration
+  u64 keep_below = 0;                     // priority ids below this compete this iteration
 
   Engine(const EngineParams& p, const Callbacks& c) : params(p), cb(c) {}
 
@@ -252,22 +253,25 @@ struct Engine {
   }
 
   // Line 6: splitting points, priorities and point location.
+  // When far more elements are bad than can win at once (the first iterations), only a
+  // random share of them competes, at most a quarter of the tetrahedron count: the others
+  // are not even located (the walks to far circumcentres are most of this phase then).
   void compute_splitting_points(std::size_t nl, int iter) {
+    const double share = std::min(1.0, (dm.ntet / 4.0 + 4096.0) / static_cast<double>(nl));
+    keep_below = static_cast<u64>(share * 4294967296.0);
     cand_all.resize_discard(nl);
     Ops::for_each(nl, ComputeSplittingPoints{dm.view(), params.criteria, list.data(), cand_all.data(),
                                              0x9e3779b9u * static_cast<unsigned>(iter + 1),
-                                             params.strategies.worst_first, stagnant});
+                                             params.strategies.worst_first, stagnant, keep_below});
     clock.template stop<Space>("split+locate");
   }
 
-  // Line 7 (S3): one splitting point per neighbourhood, by priority marks. When far more
-  // elements are bad than can win at once (the first iterations), only a random share of
-  // them competes, at most a quarter of the tetrahedron count.
+  // Line 7 (S3): one splitting point per neighbourhood, by priority marks, among the random
+  // share that competes (compute_splitting_points).
   std::size_t filter(std::size_t nl) {
     dm.mark.zero();
     const Candidate* ca = cand_all.data();
-    const double share = std::min(1.0, (dm.ntet / 4.0 + 4096.0) / static_cast<double>(nl));
-    const u64 keep_below = static_cast<u64>(share * 4294967296.0);
+    const u64 keep_below = this->keep_below;
     const bool filtering = params.strategies.filtering;
     if (filtering) Ops::for_each(nl, ClaimStart{dm.view(), ca, keep_below});
     const KeptStart kept{dm.view(), ca, keep_below};

@@ -341,7 +341,12 @@ struct ComputeSplittingPoints {
   unsigned salt;     // changes every iteration
   bool worst_first;  // shape-bad tetrahedra by radius-edge ratio; false: all larger first
   bool shuffle;      // random order within each class, after an iteration without headway
+  u64 keep_below;    // ids at or above this do not compete this iteration (engine.h filter)
   GDR_HD void operator()(long long j) const {
+    if (shuffle_id(static_cast<unsigned>(j), salt) >= keep_below) {
+      out[j].kind = m3d::kDropped;
+      return;
+    }
     compute(j);
     const u64 p = out[j].prio;
     if (shuffle) out[j].prio = exec::make_priority(unsigned(p >> 62), 0.0f, exec::priority_id(p));
