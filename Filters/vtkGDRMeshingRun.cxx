@@ -2,11 +2,13 @@
 
 #include "vtkAlgorithm.h"
 #include "vtkObject.h"
+#include "vtkOutputWindow.h"
 #include "vtkSetGet.h"
 
 #include "gdr/error.h"
 
 #include <algorithm>
+#include <atomic>
 #include <exception>
 #include <new>
 #include <string>
@@ -38,9 +40,15 @@ bool vtkGDRMeshingRun::SelectBackend(int requested, gdr::Backend& backend)
     default: // Auto
       if (!gdr::gpu_available())
       {
-        vtkWarningWithObjectMacro(this->Filter,
-          << "No usable CUDA device (" << gdr::device_info().reason
-                                    << "): running on the CPU backend.");
+        // Expected on a machine without a GPU: information, said once per session, not a
+        // warning on every run.
+        static std::atomic<bool> said{ false };
+        if (!said.exchange(true))
+        {
+          const std::string text = "GPU meshing: no usable CUDA device (" +
+            gdr::device_info().reason + "); the meshing filters run on the CPU backend.\n";
+          vtkOutputWindow::GetInstance()->DisplayText(text.c_str());
+        }
         backend = gdr::Backend::Cpu;
       }
       else

@@ -840,7 +840,8 @@ void TestBackends()
   CHECK(filter->GetOutput()->GetNumberOfCells() > 0);
   if (!gdr::gpu_available())
   {
-    CHECK(log.WarningContains("running on the CPU backend"));
+    CHECK(!log.WarningContains("CUDA")); // said once per session, as information
+
     auto* backend = vtkStringArray::SafeDownCast(
       filter->GetOutput()->GetFieldData()->GetAbstractArray("Backend"));
     CHECK(backend && backend->GetValue(0) == "cpu");

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <new>
 #include <sstream>
@@ -235,8 +236,6 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
                            "bound) refinement may not terminate; relax the bounds, or set a cap "
                            "of your own"
                      : "refinement stopped at the Steiner point cap (" + std::to_string(st.steiner_cap) + ")");
-    if (er.stalled && cb.warning)
-      cb.warning("refinement stopped: the remaining bad elements cannot be split");
   }
   if (aborted()) throw Error(Status::Aborted, "aborted by the caller");
   progress(0.92, "measuring the mesh");
@@ -320,6 +319,15 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
   st.min_dihedral_deg = nt ? min_d : 0;
   st.max_dihedral_deg = nt ? max_d : 0;
   st.max_radius_edge = max_re;
+  if (st.stalled && cb.warning) {
+    char share[32];
+    std::snprintf(share, sizeof share, "%.2f%%", st.bad_volume_percent);
+    cb.warning("refinement stopped: the elements left to split cannot be split further (most "
+               "often next to small input angles); " + std::to_string(st.bad_tets) +
+               (st.bad_tets == 1 ? " tetrahedron (" : " tetrahedra (") + share +
+               " of the volume) " + (st.bad_tets == 1 ? "remains" : "remain") +
+               " above the bounds, marked by IsBad");
+  }
   st.output_seconds = since(t_output);
   st.total_seconds = since(t_start);
   progress(1.0, "done");
