@@ -3,6 +3,7 @@
 #pragma once
 #include <algorithm>
 #include <chrono>
+#include <climits>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -121,6 +122,10 @@ struct Engine {
   bool allow_deferment = true;
   long long dead = 0;  // dead triangles since the last compaction
   int rounds = 0;      // ExpandList rounds of the last cavity phase
+  // At most this many bad elements compete in the next iteration (located, filtered, grown):
+  // lowered when few of the last competitors won, raised again as more win (see contention()).
+  std::size_t compete_cap = SIZE_MAX;
+  u64 compete_below = u64(1) << 32;  // the random-id threshold of this iteration's cap
   const bool trace = std::getenv("GDR_TRACE") != nullptr;  // one line per iteration on stderr
 
   Engine(const EngineParams& p, const Callbacks& c) : params(p), cb(c) {}
@@ -143,6 +148,7 @@ struct Engine {
       const std::size_t ns = filter(nl);                // line 7 (S3)
       grow_cavities(ns);                                // line 7 (S2, S5)
       const long long won = verify_and_number(ns);
+      contention(ns, won);
       if (won > 0) {
         insert(ns, won);                                // line 8
         idle = 0;
@@ -179,12 +185,40 @@ struct Engine {
     return nl;
   }
 
-  // Lines 5-6: splitting points, priorities, point location.
+  // Lines 5-6: splitting points, priorities, point location. Under a competition cap, only
+  // a random share of the bad elements (by the random id of their priority) is located.
+  // Walks longer than kShortWalk steps are few in most meshes; where many points are far from
+  // their triangles (all n triangles of cocircular points propose the same centre, and walk
+  // to it across the mesh: 2.6 s of 6 for 79k points), they are far from winning too, and
+  // only a random share of them, at most kMinCompete or ntri/64, walks on.
+  static constexpr int kShortWalk = 64;
   void compute_splitting_points(std::size_t nl, int iter) {
     cand_all.resize_discard(nl);
-    Ops::for_each(nl, ComputeSplittingPoints{dm.view(), params.criteria, list.data(), cand_all.data(),
-                                             0x9e3779b9u * static_cast<unsigned>(iter + 1),
-                                             params.strategies.worst_first});
+    compete_below = compete_cap >= nl
+                        ? u64(1) << 32
+                        : static_cast<u64>(static_cast<double>(compete_cap) / nl * 4294967296.0);
+    ComputeSplittingPoints step{dm.view(),
+                                params.criteria,
+                                list.data(),
+                                cand_all.data(),
+                                0x9e3779b9u * static_cast<unsigned>(iter + 1),
+                                params.strategies.worst_first,
+                                compete_below,
+                                kShortWalk,
+                                false,
+                                0};
+    Ops::for_each(nl, step);
+    const Candidate* ca = cand_all.data();
+    const std::size_t nfar = exec::compact_indices<Space>(
+        nl, [=] GDR_HD(long long j) { return ca[j].kind == kFarWalk; }, work, count);
+    if (nfar) {
+      const double far_cap = std::max<double>(kMinCompete, dm.ntri / 64.0);
+      step.far_only = true;
+      step.max_steps = params.criteria.step_limit;
+      step.far_below = nfar <= far_cap ? u64(1) << 32
+                                       : static_cast<u64>(far_cap / nfar * compete_below);
+      Ops::for_each(nl, step);
+    }
     clock.template stop<Space>("split+locate");
   }
 
@@ -207,7 +241,7 @@ struct Engine {
       if (segments_only) pool = nseg;
     }
     const double share = std::min(1.0, (dm.ntri / 4.0 + 4096.0) / static_cast<double>(pool));
-    const u64 keep_below = static_cast<u64>(share * 4294967296.0);
+    const u64 keep_below = std::min(compete_below, static_cast<u64>(share * 4294967296.0));
     if (sg.filtering)
       Ops::for_each(nl, ClaimStart{dm.view(), cand_all.data(), keep_below, segments_only});
     const bool filtering = sg.filtering;
@@ -253,7 +287,9 @@ struct Engine {
         tp[cnt[j] + 1] = CavityTuple{static_cast<int>(j), mv.tn[3 * c.start + c.ek] / 3, kForceIn};
     });
     exec::ExpandListLimits lim;
-    if (allow_deferment && params.strategies.deferment) {
+    // Under a competition cap (contention()) big cavities are the rule, not stragglers: a
+    // deferred iteration would only throw away the growth of the few points that can win.
+    if (allow_deferment && params.strategies.deferment && compete_cap == SIZE_MAX) {
       lim.defer_after_rounds = 16;
       lim.defer_below = ns / 64 + 32;
     }
@@ -302,11 +338,35 @@ struct Engine {
     return won;
   }
 
+  // Contention: when few competitors win, most grew cavities (and walked to their points)
+  // for nothing. Cocircular inputs are the extreme: after the centre goes in, the mesh is a
+  // fan of n slivers whose circumcircles each hold the points of the slivers within about
+  // 60 degrees, so only a handful of the n candidates can win an iteration, each after
+  // growing a cavity of n/3 triangles, and losers walk and grow too: quadratic work per
+  // iteration (a 100k-point circle took 48 s on 2 cores). When fewer than 1 in 16 won, the
+  // next iteration lets only 16 times as many compete as won (at least kMinCompete, a random
+  // share, so the winners are as spread as before); while at least 1 in 16 wins, the cap
+  // grows fourfold per iteration, back to no cap. Inputs where many win are never capped.
+  static constexpr std::size_t kMinCompete = 1024;
+  void contention(std::size_t ns, long long won) {
+    if (static_cast<std::size_t>(won) * 16 < ns)
+      compete_cap = std::max<std::size_t>(kMinCompete, 16 * static_cast<std::size_t>(won));
+    else if (compete_cap != SIZE_MAX)
+      compete_cap = compete_cap > SIZE_MAX / 4 ? SIZE_MAX : 4 * compete_cap;
+  }
+
   // Line 8: remesh each winning cavity as a fan from its point, then compact (S1) once a
   // tenth of the triangles are dead (a cavity of k triangles leaves k dead, k+2 new): dead
   // slots are device memory per element.
   void insert(std::size_t ns, long long won) {
     const std::size_t nt = tuples.size();
+    // Each cavity triangle gives at most 3 new ones, and triangle numbers (times 3, in the
+    // neighbour links) are ints: refuse clearly rather than let a count wrap.
+    if (3.0 * static_cast<double>(nt) + dm.ntri > static_cast<double>(INT_MAX / 3))
+      throw Error(Status::InvalidInput,
+                  "gDP2d: one iteration's cavities hold " + std::to_string(nt) +
+                      " triangles on a mesh of " + std::to_string(dm.ntri) +
+                      ": beyond the engine's 32-bit triangle numbers");
     count.resize_discard(nt);
     Ops::for_each(nt, CountFanEdges{dm.view(), cand.data(), tuples.data(), failed.data(), count.data()});
     const int new_tris = static_cast<int>(Ops::exclusive_scan(count.data(), count.data(), nt));

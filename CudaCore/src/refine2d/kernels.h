@@ -295,8 +295,13 @@ GDR_HD_INLINE void make_segment_candidate(const MeshView& m, int t, int k, unsig
     out.kind = -1;
 }
 
+// A walk that ran out of its short first budget (kind, until the second pass decides).
+enum : short { kFarWalk = -2 };
+
 // Splitting points and point location (Algorithm 1 lines 5-6). A walk towards a
 // circumcentre that meets a subsegment takes that subsegment's split point instead.
+// Walks go in two passes: the first stops after `max_steps` (kFarWalk); the second
+// (`far_only`) walks again, up to the step limit, the far ones whose id is below `far_below`.
 struct ComputeSplittingPoints {
   MeshView m;
   Criteria c;
@@ -304,11 +309,25 @@ struct ComputeSplittingPoints {
   Candidate* out;
   unsigned salt;  // changes every iteration
   bool worst_first;  // triangles bad by shape by radius-edge ratio; false: all larger first
+  u64 compete_below;  // only elements whose random id is below this (of 2^32) compete
+  int max_steps;
+  bool far_only;
+  u64 far_below;
   GDR_HD void operator()(long long j) const {
     const int e = list[j];
     const int t = e >> 2, k = e & 3;
     Candidate& cand = out[j];
     const unsigned id = shuffle_id(static_cast<unsigned>(j), salt);
+    if (far_only) {
+      if (cand.kind != kFarWalk) return;
+      if (id >= far_below) {
+        cand.kind = -1;
+        return;
+      }
+    } else if (id >= compete_below) {  // sits this iteration out: no walk
+      cand.kind = -1;
+      return;
+    }
     if (k < 3) {
       make_segment_candidate(m, t, k, kClassEncroached, id, cand);
       return;
@@ -320,7 +339,8 @@ struct ComputeSplittingPoints {
     cand.kind = -1;
     if (!(r2 < 1e300) || p[0] != p[0] || p[1] != p[1]) return;  // degenerate triangle
     int u = t;
-    for (int step = 0; step < c.step_limit; ++step) {
+    const int steps = max_steps < c.step_limit ? max_steps : c.step_limit;
+    for (int step = 0; step < steps; ++step) {
       int exit = -1;
       for (int i0 = 0; i0 < 3; ++i0) {
         const int i = (i0 + step) % 3;  // rotate the first edge tried: no cycling
@@ -349,6 +369,7 @@ struct ComputeSplittingPoints {
       }
       u = m.tn[3 * u + exit] / 3;
     }
+    if (steps < c.step_limit) cand.kind = kFarWalk;
   }
 };
 
@@ -639,7 +660,7 @@ struct LinkFan {
       const int y = m.tv[3 * t + prev3(e)];
       int u = t, k = prev3(e);
       for (int guard = 0;; ++guard) {
-        if (guard > 100000) {
+        if (guard > m.ntri) {  // a cavity has fewer triangles than the mesh
           *error = 1;
           return;
         }
