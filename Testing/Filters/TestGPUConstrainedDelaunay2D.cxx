@@ -2,6 +2,7 @@
 //   TestGPUConstrainedDelaunay2D <test name>
 // The meshes are converted back to gdr::TriMesh by this file (independently of the
 // filter's converter) and checked with the core validator gdr::validate_trimesh.
+#include "FilterTestSupport.h"
 #include "vtkGPUConstrainedDelaunay2D.h"
 
 #include "vtkCallbackCommand.h"
@@ -36,44 +37,7 @@
 
 namespace
 {
-int Failures = 0;
-
-#define CHECK(cond)                                                                           \
-  do                                                                                          \
-  {                                                                                           \
-    if (!(cond))                                                                              \
-    {                                                                                         \
-      std::cerr << __FILE__ << ":" << __LINE__ << ": check failed: " #cond << std::endl;      \
-      ++Failures;                                                                             \
-    }                                                                                         \
-  } while (false)
-
-// Records error and warning events of a filter.
-struct EventLog
-{
-  std::vector<std::string> Errors;
-  std::vector<std::string> Warnings;
-
-  void Watch(vtkObject* object)
-  {
-    vtkNew<vtkCallbackCommand> cb;
-    cb->SetClientData(this);
-    cb->SetCallback(
-      [](vtkObject*, unsigned long event, void* client, void* data)
-      {
-        auto* self = static_cast<EventLog*>(client);
-        const std::string text = data ? static_cast<const char*>(data) : "";
-        (event == vtkCommand::ErrorEvent ? self->Errors : self->Warnings).push_back(text);
-      });
-    object->AddObserver(vtkCommand::ErrorEvent, cb);
-    object->AddObserver(vtkCommand::WarningEvent, cb);
-  }
-  bool ErrorContains(const std::string& s) const
-  {
-    return std::any_of(Errors.begin(), Errors.end(),
-      [&](const std::string& e) { return e.find(s) != std::string::npos; });
-  }
-};
+using gdr_test::EventLog;
 
 vtkSmartPointer<vtkPolyData> ReadPlate()
 {
@@ -557,22 +521,5 @@ int main(int argc, char* argv[])
     { "Abort", TestAbort },
     { "Backends", TestBackends },
   };
-  if (argc != 2 || !tests.count(argv[1]))
-  {
-    std::cerr << "usage: " << argv[0] << " <test>; tests:";
-    for (const auto& t : tests)
-    {
-      std::cerr << " " << t.first;
-    }
-    std::cerr << std::endl;
-    return 2;
-  }
-  tests.at(argv[1])();
-  if (Failures)
-  {
-    std::cerr << argv[1] << ": " << Failures << " check(s) failed" << std::endl;
-    return 1;
-  }
-  std::cout << argv[1] << ": passed" << std::endl;
-  return 0;
+  return gdr_test::RunNamedTest(argc, argv, tests);
 }
