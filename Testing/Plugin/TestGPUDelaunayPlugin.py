@@ -9,7 +9,6 @@ arrays, histogram and proxy metadata. With --render (needs a display: run it und
 image, and saves the mesh, the histogram chart and both side by side
 (docs/paraview.md uses the last one).
 """
-import argparse
 import os
 import sys
 
@@ -17,22 +16,11 @@ from paraview.simple import *  # noqa: F401,F403
 from paraview import servermanager
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from plugin_test_support import check, check_documented, compare_images  # noqa: E402
-
-
-def parse():
-    p = argparse.ArgumentParser()
-    p.add_argument("--plugin", required=True)
-    p.add_argument("--input", required=True)
-    p.add_argument("--outdir", required=True)
-    p.add_argument("--render", action="store_true")
-    p.add_argument("--baseline")
-    p.add_argument("--update-baseline", action="store_true")
-    return p.parse_args()
+from plugin_test_support import check, check_documented, compare_images, parse_args  # noqa: E402
 
 
 def main():
-    args = parse()
+    args = parse_args()
     os.makedirs(args.outdir, exist_ok=True)
 
     LoadPlugin(args.plugin, remote=False, ns=globals())

@@ -1,4 +1,5 @@
 """Helpers shared by the ParaView plugin tests (run under pvbatch / pvpython)."""
+import argparse
 import sys
 
 
@@ -40,3 +41,15 @@ def check_documented(proxy, names):
         doc = prop.SMProperty.GetDocumentation()
         check(doc is not None and len(doc.GetDescription().strip()) > 20,
               "documentation of " + name)
+
+
+def parse_args():
+    """The command line every plugin test takes (see the tests' docstrings)."""
+    p = argparse.ArgumentParser()
+    p.add_argument("--plugin", required=True)
+    p.add_argument("--input", required=True)
+    p.add_argument("--outdir", required=True)
+    p.add_argument("--render", action="store_true")
+    p.add_argument("--baseline")
+    p.add_argument("--update-baseline", action="store_true")
+    return p.parse_args()
