@@ -40,6 +40,33 @@
 
 namespace
 {
+// Cells of N corners each, as a vtkCellArray; corner k of a cell is cell[order[k]].
+template <std::size_t N>
+vtkSmartPointer<vtkCellArray> FixedSizeCells(
+  const std::vector<std::array<int, N>>& cells, const std::array<int, N>& order)
+{
+  const vtkIdType n = static_cast<vtkIdType>(cells.size());
+  vtkNew<vtkIdTypeArray> offsets;
+  vtkNew<vtkIdTypeArray> connectivity;
+  offsets->SetNumberOfValues(n + 1);
+  connectivity->SetNumberOfValues(static_cast<vtkIdType>(N) * n);
+  for (vtkIdType c = 0; c < n; ++c)
+  {
+    offsets->SetValue(c, static_cast<vtkIdType>(N) * c);
+    for (std::size_t k = 0; k < N; ++k)
+    {
+      connectivity->SetValue(static_cast<vtkIdType>(N) * c + k, cells[c][order[k]]);
+    }
+  }
+  offsets->SetValue(n, static_cast<vtkIdType>(N) * n);
+  vtkSmartPointer<vtkCellArray> array = vtkSmartPointer<vtkCellArray>::New();
+  array->SetData(offsets, connectivity);
+  return array;
+}
+}
+
+namespace
+{
 // Maps VTK point ids to PSLG vertex indices, adding points on first use.
 class PointMap
 {
@@ -190,7 +217,6 @@ void vtkGDRConversion::ToPolyData(const gdr::TriMesh& mesh, double z, vtkPolyDat
 {
   output->Initialize();
   const vtkIdType npoints = static_cast<vtkIdType>(mesh.points.size());
-  const vtkIdType ntris = static_cast<vtkIdType>(mesh.triangles.size());
 
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
@@ -200,21 +226,7 @@ void vtkGDRConversion::ToPolyData(const gdr::TriMesh& mesh, double z, vtkPolyDat
     points->SetPoint(i, mesh.points[i].x, mesh.points[i].y, z);
   }
 
-  vtkNew<vtkIdTypeArray> offsets;
-  vtkNew<vtkIdTypeArray> connectivity;
-  offsets->SetNumberOfValues(ntris + 1);
-  connectivity->SetNumberOfValues(3 * ntris);
-  for (vtkIdType t = 0; t < ntris; ++t)
-  {
-    offsets->SetValue(t, 3 * t);
-    for (int k = 0; k < 3; ++k)
-    {
-      connectivity->SetValue(3 * t + k, mesh.triangles[t][k]);
-    }
-  }
-  offsets->SetValue(ntris, 3 * ntris);
-  vtkNew<vtkCellArray> triangles;
-  triangles->SetData(offsets, connectivity);
+  vtkSmartPointer<vtkCellArray> triangles = FixedSizeCells(mesh.triangles, { 0, 1, 2 });
 
   output->SetPoints(points);
   output->SetPolys(triangles);
@@ -659,7 +671,6 @@ void vtkGDRConversion::ToUnstructuredGrid(
   output->Initialize();
   const gdr::TetMesh& mesh = result.mesh;
   const vtkIdType npoints = static_cast<vtkIdType>(mesh.points.size());
-  const vtkIdType ntets = static_cast<vtkIdType>(mesh.tets.size());
 
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
@@ -671,22 +682,7 @@ void vtkGDRConversion::ToUnstructuredGrid(
 
   // VTK's tetrahedra have (p1 - p0) x (p2 - p0) pointing towards p3, the opposite of the
   // core's orientation (orient3d > 0, gdr/validate.h): two corners are swapped.
-  vtkNew<vtkIdTypeArray> offsets;
-  vtkNew<vtkIdTypeArray> connectivity;
-  offsets->SetNumberOfValues(ntets + 1);
-  connectivity->SetNumberOfValues(4 * ntets);
-  for (vtkIdType t = 0; t < ntets; ++t)
-  {
-    const std::array<int, 4>& v = mesh.tets[t];
-    offsets->SetValue(t, 4 * t);
-    connectivity->SetValue(4 * t, v[1]);
-    connectivity->SetValue(4 * t + 1, v[0]);
-    connectivity->SetValue(4 * t + 2, v[2]);
-    connectivity->SetValue(4 * t + 3, v[3]);
-  }
-  offsets->SetValue(ntets, 4 * ntets);
-  vtkNew<vtkCellArray> tets;
-  tets->SetData(offsets, connectivity);
+  vtkSmartPointer<vtkCellArray> tets = FixedSizeCells(mesh.tets, { 1, 0, 2, 3 });
   output->SetPoints(points);
   output->SetCells(VTK_TETRA, tets);
 
@@ -718,22 +714,7 @@ void vtkGDRConversion::ToSubfaces(
   const gdr::TetMesh& mesh, vtkUnstructuredGrid* tets, vtkPolyData* output)
 {
   output->Initialize();
-  const vtkIdType nfaces = static_cast<vtkIdType>(mesh.subfaces.size());
-  vtkNew<vtkIdTypeArray> offsets;
-  vtkNew<vtkIdTypeArray> connectivity;
-  offsets->SetNumberOfValues(nfaces + 1);
-  connectivity->SetNumberOfValues(3 * nfaces);
-  for (vtkIdType f = 0; f < nfaces; ++f)
-  {
-    offsets->SetValue(f, 3 * f);
-    for (int k = 0; k < 3; ++k)
-    {
-      connectivity->SetValue(3 * f + k, mesh.subfaces[f][k]);
-    }
-  }
-  offsets->SetValue(nfaces, 3 * nfaces);
-  vtkNew<vtkCellArray> triangles;
-  triangles->SetData(offsets, connectivity);
+  vtkSmartPointer<vtkCellArray> triangles = FixedSizeCells(mesh.subfaces, { 0, 1, 2 });
   output->SetPoints(tets->GetPoints());
   output->SetPolys(triangles);
   output->GetPointData()->PassData(tets->GetPointData());
