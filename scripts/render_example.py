@@ -25,6 +25,25 @@ import tempfile
 from paraview.simple import *  # noqa: F401,F403
 
 
+def color_cells(display, view, array, top, title):
+    """Surface With Edges, cells colored by `array` over [0, top] (Viridis), and its scalar
+    bar titled `title` with whole-number labels, dark on a white background."""
+    display.SetRepresentationType("Surface With Edges")
+    display.EdgeColor = [0.15, 0.15, 0.15]
+    ColorBy(display, ("CELLS", array))
+    lut = GetColorTransferFunction(array)
+    lut.ApplyPreset("Viridis (matplotlib)", True)
+    lut.RescaleTransferFunction(0.0, top)
+    display.SetScalarBarVisibility(view, True)
+    bar = GetScalarBar(lut, view)
+    bar.Title = title
+    bar.ComponentTitle = ""
+    bar.TitleColor = bar.LabelColor = [0.1, 0.1, 0.1]
+    bar.AutomaticLabelFormat = 0
+    bar.LabelFormat = "%.0f"
+    bar.RangeLabelFormat = "%.0f"
+
+
 def parse():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("input", help=".poly, .vtp or .vtk PSLG (or a mesh with MinAngle)")
@@ -254,20 +273,7 @@ def main():
         view.UseColorPaletteForBackground = 0
     view.Background = [1.0, 1.0, 1.0]
     display = Show(mesh, view)
-    display.SetRepresentationType("Surface With Edges")
-    display.EdgeColor = [0.15, 0.15, 0.15]
-    ColorBy(display, ("CELLS", "MinAngle"))
-    lut = GetColorTransferFunction("MinAngle")
-    lut.ApplyPreset("Viridis (matplotlib)", True)
-    lut.RescaleTransferFunction(0.0, 60.0)
-    display.SetScalarBarVisibility(view, True)
-    bar = GetScalarBar(lut, view)
-    bar.Title = "MinAngle (deg)"
-    bar.ComponentTitle = ""
-    bar.TitleColor = bar.LabelColor = [0.1, 0.1, 0.1]
-    bar.AutomaticLabelFormat = 0
-    bar.LabelFormat = "%.0f"
-    bar.RangeLabelFormat = "%.0f"
+    color_cells(display, view, "MinAngle", 60.0, "MinAngle (deg)")
     view.InteractionMode = "2D"
     ResetCamera(view)
 

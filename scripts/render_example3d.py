@@ -22,7 +22,7 @@ import tempfile
 from paraview.simple import *  # noqa: F401,F403
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from render_example import load_plugin, reader_for, side_by_side  # noqa: E402
+from render_example import color_cells, load_plugin, reader_for, side_by_side  # noqa: E402
 
 
 def parse():
@@ -147,20 +147,7 @@ def main():
     cut.ClipType.Origin = center
     cut.ClipType.Normal = [0.0, -1.0, 0.0]  # keeps the half beyond the plane
     display = Show(cut, view)
-    display.SetRepresentationType("Surface With Edges")
-    display.EdgeColor = [0.15, 0.15, 0.15]
-    ColorBy(display, ("CELLS", "MinDihedralAngle"))
-    lut = GetColorTransferFunction("MinDihedralAngle")
-    lut.ApplyPreset("Viridis (matplotlib)", True)
-    lut.RescaleTransferFunction(0.0, 70.0)
-    display.SetScalarBarVisibility(view, True)
-    bar = GetScalarBar(lut, view)
-    bar.Title = "MinDihedralAngle (deg)"
-    bar.ComponentTitle = ""
-    bar.TitleColor = bar.LabelColor = [0.1, 0.1, 0.1]
-    bar.AutomaticLabelFormat = 0
-    bar.LabelFormat = "%.0f"
-    bar.RangeLabelFormat = "%.0f"
+    color_cells(display, view, "MinDihedralAngle", 70.0, "MinDihedralAngle (deg)")
     text = Text(Text=title)
     text_display = Show(text, view)
     text_display.Color = [0.1, 0.1, 0.1]
