@@ -102,7 +102,7 @@ int vtkGPUConstrainedDelaunay2D::RequestData(vtkInformation* vtkNotUsed(request)
   options.max_steiner_points = static_cast<long long>(this->MaximumSteinerPoints);
   options.mode = this->Mode == CHEW ? gdr::EncroachMode::Chew : gdr::EncroachMode::Ruppert;
   options.remove_exterior = this->RemoveExterior != 0;
-  options.split_intersections = this->SplitIntersections != 0;
+  options.strict_input = this->StrictInput != 0;
 
   vtkGDRMeshingRun run(this);
   if (!run.SelectBackend(this->Backend, options.backend))
@@ -153,5 +153,5 @@ void vtkGPUConstrainedDelaunay2D::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Backend: "
      << (this->Backend == GPU ? "GPU" : (this->Backend == CPU ? "CPU" : "Auto")) << "\n";
   os << indent << "RemoveExterior: " << (this->RemoveExterior ? "On" : "Off") << "\n";
-  os << indent << "SplitIntersections: " << (this->SplitIntersections ? "On" : "Off") << "\n";
+  os << indent << "StrictInput: " << (this->StrictInput ? "On" : "Off") << "\n";
 }

@@ -126,12 +126,13 @@ public:
 
   ///@{
   /**
-   * Split crossing segments at their intersection instead of refusing the input.
-   * Default off.
+   * Refuse points lying on segments and crossing, touching or overlapping segments with
+   * an error. Default off: segments are split there (as Triangle and CGAL do), with a
+   * warning that counts them.
    */
-  vtkSetMacro(SplitIntersections, vtkTypeBool);
-  vtkGetMacro(SplitIntersections, vtkTypeBool);
-  vtkBooleanMacro(SplitIntersections, vtkTypeBool);
+  vtkSetMacro(StrictInput, vtkTypeBool);
+  vtkGetMacro(StrictInput, vtkTypeBool);
+  vtkBooleanMacro(StrictInput, vtkTypeBool);
   ///@}
 
   ///@{
@@ -158,7 +159,7 @@ protected:
   int Mode = RUPPERT;
   int Backend = AUTO;
   vtkTypeBool RemoveExterior = false;
-  vtkTypeBool SplitIntersections = false;
+  vtkTypeBool StrictInput = false;
 
 private:
   vtkGPUConstrainedDelaunay2D(const vtkGPUConstrainedDelaunay2D&) = delete;

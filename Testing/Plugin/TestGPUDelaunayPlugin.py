@@ -35,14 +35,14 @@ def main():
     check(mesh.MaximumEdgeLength == 0 and mesh.MaximumArea == 0, "size bounds off by default")
     check(mesh.MaximumSteinerPoints == -1, "MaximumSteinerPoints default")
     check(mesh.Mode == "Ruppert" and mesh.Backend == "Auto", "Mode/Backend defaults")
-    check(mesh.RemoveExterior == 0 and mesh.SplitIntersections == 0, "boolean defaults")
+    check(mesh.RemoveExterior == 0 and mesh.StrictInput == 0, "boolean defaults")
     check_documented(mesh, ("MinimumAngle", "MaximumEdgeLength", "MaximumArea",
                             "MaximumSteinerPoints", "Mode", "Backend", "RemoveExterior",
-                            "SplitIntersections", "HoleSeeds"))
+                            "StrictInput", "HoleSeeds"))
     angle_domain = mesh.GetProperty("MinimumAngle").SMProperty.GetDomain("range")
     check(angle_domain.GetMinimum(0) == 0 and angle_domain.GetMaximum(0) == 34,
           "MinimumAngle range 0..34")
-    for name in ("Mode", "Backend", "MaximumSteinerPoints", "SplitIntersections"):
+    for name in ("Mode", "Backend", "MaximumSteinerPoints", "StrictInput"):
         check(mesh.GetProperty(name).SMProperty.GetPanelVisibility() == "advanced",
               name + " is advanced")
 

@@ -59,7 +59,10 @@ Algorithm:
   --mode ruppert|chew     encroachment by diametral circle (ruppert, default) or lens (chew)
   --off-centers           insert off-centers instead of circumcenters (fewer points)
   --remove-exterior       keep only triangles enclosed by segments (and outside holes)
-  --split-intersections   split crossing segments at their intersections instead of refusing
+  --strict                refuse points lying on segments and crossing, touching or
+                          overlapping segments (by default segments are split there, as
+                          Triangle and CGAL do, with a warning that counts them);
+                          --split-intersections, the old name of the default, is accepted
   --cdt-only              only the constrained Delaunay triangulation, no refinement
   --backend auto|gpu|cpu  where to refine (default auto: GPU for large inputs when present)
 Checking and reporting:
@@ -122,8 +125,8 @@ Args2d parse_2d(const std::vector<std::string>& args) {
        }},
       {"off-centers", 0, false, [&](const std::string&) { a.options.off_centers = true; }},
       {"remove-exterior", 0, false, [&](const std::string&) { a.options.remove_exterior = true; }},
-      {"split-intersections", 0, false,
-       [&](const std::string&) { a.options.split_intersections = true; }},
+      {"strict", 0, false, [&](const std::string&) { a.options.strict_input = true; }},
+      {"split-intersections", 0, false, [&](const std::string&) { a.options.strict_input = false; }},
       {"cdt-only", 0, false, [&](const std::string&) { a.options.refine = false; }},
       {"backend", 0, true, [&](const std::string& v) { a.options.backend = parse_backend(cmd, v); }},
       {"check", 0, false, [&](const std::string&) { a.check = true; }},
@@ -212,7 +215,7 @@ void write_stats_json(const std::string& path, const Args2d& a, const Refine2dRe
   j.field("mode", o.mode == EncroachMode::Chew ? "chew" : "ruppert");
   j.field("off_centers", o.off_centers);
   j.field("remove_exterior", o.remove_exterior);
-  j.field("split_intersections", o.split_intersections);
+  j.field("strict_input", o.strict_input);
   j.field("refine", o.refine);
   j.field("backend", to_string(o.backend));
   j.end_object();

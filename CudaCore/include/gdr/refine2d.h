@@ -30,7 +30,10 @@ struct Refine2dOptions {
   EncroachMode mode = EncroachMode::Ruppert;
   bool off_centers = false;        // Ungor off-centers instead of circumcenters (fewer points)
   bool remove_exterior = false;    // keep only triangles enclosed by segments (and outside holes)
-  bool split_intersections = false;  // split crossing segments instead of refusing them
+  // Points lying on segments and crossing, touching or overlapping segments are valid input
+  // (as for Triangle and CGAL): segments are split there, with a warning that counts them.
+  // strict_input refuses such input instead (SelfIntersectingInput, naming the items).
+  bool strict_input = false;
   bool refine = true;              // false: only the constrained Delaunay triangulation
   Backend backend = Backend::Auto;
   // Auto uses the GPU from this estimated output size. 0 (default): chosen per run, for the

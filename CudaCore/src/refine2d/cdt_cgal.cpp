@@ -198,7 +198,7 @@ HostMesh initial_cdt(const CleanPslg& g, bool remove_exterior) {
           throw Error(Status::SelfIntersectingInput,
                       "a point lies on the interior of a segment near points " +
                           std::to_string(a) + " and " + std::to_string(b) +
-                          " (split the segment there, or use the split-intersections option)");
+                          " (split the segment there, or leave strict input off)");
         s = it->second;
       } else if (m.tn[3 * t + i] < 0) {
         s = static_cast<int>(m.seg.size() / 2);

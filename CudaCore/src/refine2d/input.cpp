@@ -322,7 +322,7 @@ std::string conflict_message(const CleanPslg& g, const std::vector<SegmentConfli
     msg << "; and " << conflicts.size() - shown << " more ("
         << (conflicts.size() >= count_limit ? "at least " : "") << conflicts.size()
         << " in all)";
-  if (!after_split) msg << " (use the split-intersections option to split them)";
+  if (!after_split) msg << " (strict input refuses them; without it they are split)";
   return msg.str();
 }
 
@@ -411,6 +411,26 @@ bool merge_close_intersections(CleanPslg& g, double eps) {
   return true;
 }
 
+// What splitting did, for the warning: how many input segments were cut, into how many
+// pieces, and how many intersection points were added (points lying on segments add none).
+std::string split_summary(const CleanPslg& g) {
+  std::vector<int> pieces;  // per input segment
+  for (const int s : g.segment_origin) {
+    if (s >= static_cast<int>(pieces.size())) pieces.resize(s + 1, 0);
+    ++pieces[s];
+  }
+  long long cut = 0, pieces_of_cut = 0;
+  for (const int n : pieces)
+    if (n > 1) ++cut, pieces_of_cut += n;
+  long long added = 0;
+  for (const int o : g.point_origin) added += o < 0;
+  std::ostringstream m;
+  m << "split " << cut << " segment(s) into " << pieces_of_cut
+    << " pieces where they cross, touch or overlap other segments or pass through points ("
+    << added << " intersection point(s) added; strict input refuses such input)";
+  return m.str();
+}
+
 }  // namespace
 
 CleanPslg clean_input(const Pslg& in, const Refine2dOptions& o, const Callbacks& cb) {
@@ -449,15 +469,15 @@ CleanPslg clean_input(const Pslg& in, const Refine2dOptions& o, const Callbacks&
   }
   dedupe_segments(g, cb);
 
-  // Conflicts: with split-intersections, CGAL's constrained triangulation splits every
-  // segment at all of them at once (exact predicates, consistent rounding); the result is
-  // checked again. Without it they are refused, naming a few.
+  // Conflicts: by default CGAL's constrained triangulation splits every segment at all of
+  // them at once (exact predicates, consistent rounding), and the result is checked again.
+  // With strict input they are refused, naming a few.
   const std::size_t count_limit = std::size_t(1) << 22;
+  const bool split = !o.strict_input;
   // (With splitting, one conflict is enough to know that the segments must be split.)
-  auto conflicts =
-      find_segment_conflicts(g.points, g.segments, o.split_intersections ? 1 : count_limit);
+  auto conflicts = find_segment_conflicts(g.points, g.segments, split ? 1 : count_limit);
   if (conflicts.empty()) return g;
-  if (o.split_intersections) {
+  if (split) {
     // Intersection points closer than 2^-40 of the extent are merged (snap rounding) and
     // the result split again, until nothing moves (a few rounds).
     double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
@@ -472,10 +492,13 @@ CleanPslg clean_input(const Pslg& in, const Refine2dOptions& o, const Callbacks&
       if (round == 7 || !merge_close_intersections(g, eps)) break;  // ends split
     }
     conflicts = find_segment_conflicts(g.points, g.segments, count_limit);
-    if (conflicts.empty()) return g;
+    if (conflicts.empty()) {
+      if (cb.warning) cb.warning(split_summary(g));
+      return g;
+    }
   }
-  throw Error(o.split_intersections ? Status::InternalError : Status::SelfIntersectingInput,
-              conflict_message(g, conflicts, count_limit, o.split_intersections));
+  throw Error(split ? Status::InternalError : Status::SelfIntersectingInput,
+              conflict_message(g, conflicts, count_limit, split));
 }
 
 }  // namespace gdr::r2d

@@ -450,22 +450,38 @@ TEST_P(Refine2d, WorldMapAtThirtyThreeAndAHalfDegrees) {
   EXPECT_LT(r.stats.bad_area_percent, 0.01);
 }
 
-TEST_P(Refine2d, SplitIntersectionsOption) {
+TEST_P(Refine2d, IntersectionsSplitUnlessStrict) {
   Pslg g;
   add_loop(g, square(0, 0, 4, 4));
   g.points.push_back({1, 1});
   g.points.push_back({3, 3});
   g.points.push_back({1, 3});
   g.points.push_back({3, 1});
-  g.points.push_back({2, 0.5});  // a vertex on the next segment's interior (T-junction)
+  g.points.push_back({2, 0.5});
   g.segments.push_back({4, 5});
-  g.segments.push_back({6, 7});
-  g.segments.push_back({8, 2});  // touches nothing: ends on the hull corner
+  g.segments.push_back({6, 7});  // crosses (4, 5) at (2, 2)
+  g.segments.push_back({8, 2});  // crosses (6, 7) too: (6, 7) in 3 pieces, 7 in all
   g.segments.push_back({1, 8});
+  // Split by default, with a warning that counts what was split.
   auto o = options();
-  o.split_intersections = true;
-  auto r = mesh(g, o);
+  std::vector<std::string> warnings;
+  gdr::Callbacks cb;
+  cb.warning = [&](const std::string& w) { warnings.push_back(w); };
+  auto r = gdr::refine_2d(g, o, cb);
   EXPECT_GT(r.mesh.points.size(), g.points.size());
+  ASSERT_FALSE(warnings.empty());
+  EXPECT_NE(warnings[0].find("split 3 segment(s) into 7 pieces"), std::string::npos) << warnings[0];
+  EXPECT_NE(warnings[0].find("2 intersection point(s) added"), std::string::npos) << warnings[0];
+  r = mesh(g, o);  // and validates
+  // Strict input refuses it.
+  o.strict_input = true;
+  try {
+    gdr::refine_2d(g, o);
+    ADD_FAILURE() << "crossing segments accepted with strict input";
+  } catch (const gdr::Error& e) {
+    EXPECT_EQ(e.status(), gdr::Status::SelfIntersectingInput);
+  }
+  o.strict_input = false;
   // An isolated point on a segment: the segment is split there, and both still validate.
   Pslg on_segment;
   add_loop(on_segment, square(0, 0, 1, 1));
@@ -478,7 +494,6 @@ TEST_P(Refine2d, SplitIntersectionsOption) {
 // left "could not be split"), and a soup of random segments with many crossings.
 TEST_P(Refine2d, SplitIntersectionsAnyArrangement) {
   auto o = options();
-  o.split_intersections = true;
   auto star = [](int n, double cx, double cy) {
     Pslg g;
     for (int k = 0; k < n; ++k) {
@@ -527,9 +542,9 @@ TEST_P(Refine2d, SplitIntersectionsAnyArrangement) {
     }
     const auto r = mesh(g, o);
     EXPECT_GT(r.stats.output_points, 1000);
-    // Without the option: refused with a short message, a few pairs and the count, numbered
+    // With strict input: refused with a short message, a few pairs and the count, numbered
     // as in the input file.
-    o.split_intersections = false;
+    o.strict_input = true;
     g.first_index = 1;
     std::string msg;
     try {
@@ -542,7 +557,7 @@ TEST_P(Refine2d, SplitIntersectionsAnyArrangement) {
     EXPECT_LT(msg.size(), 400u) << msg;
     EXPECT_NE(msg.find(" in all)"), std::string::npos) << msg;
     EXPECT_EQ(msg.find("segment 0 "), std::string::npos) << msg;  // numbered from 1
-    o.split_intersections = true;
+    o.strict_input = false;
   }
 }
 
