@@ -23,7 +23,17 @@ struct Criteria {
   double offcenter_h = 0;     // off-centres: height over the shortest edge / its length; 0 = circumcentres
   int chew = 0;               // 1: diametral lens encroachment, 0: diametral circle
   int step_limit = 4096;      // point-location walk bound (deferred beyond it)
+  int grid_exp = 1074;        // new coordinates are multiples of 2^-grid_exp (on_grid)
 };
+
+// The facade rescales the input so that its coordinates are below 2 and multiples of
+// 2^-grid_exp (grid_exp <= 260): every product of four coordinate differences is then a
+// multiple of 2^-1040, and the predicates' expansions cannot underflow (docs/predicates.md).
+// New points keep that: a coordinate too small to be a multiple of 2^-grid_exp by itself is
+// rounded to one (a move of at most 2^-261, below the rounding of any construction near 1).
+GDR_HD_INLINE double on_grid(double v, int grid_exp) {
+  return fabs(v) < ldexp(1.0, 52 - grid_exp) ? ldexp(rint(ldexp(v, grid_exp)), -grid_exp) : v;
+}
 
 GDR_HD_INLINE const double* pt(const MeshView& m, int v) { return m.xy + 2 * v; }
 
@@ -104,26 +114,17 @@ GDR_HD_INLINE int classify_triangle(const MeshView& m, int t, const Criteria& c)
   double lmin = l0;
   if (l1 < lmin) { lmin = l1; s = 1; }
   if (l2 < lmin) { lmin = l2; s = 2; }
-  const double others = (l0 * l1 * l2) / lmin;
+  // (The two longer edges' product, not l0 l1 l2 / lmin: a product of six differences
+  // could underflow.)
+  const double others = s == 0 ? l1 * l2 : (s == 1 ? l0 * l2 : l0 * l1);
   if (!(c.sin2_min_angle * others > cross * cross)) return kGood;
   const int p = m.tv[3 * t + next3(s)], q = m.tv[3 * t + prev3(s)];
   return in_small_angle(m, p, q) ? kBadProtected : kBad;
 }
 
-// Circumcentre (or Ungor off-centre) of triangle t, and its squared circumradius.
-GDR_HD_INLINE void splitting_point(const MeshView& m, int t, const Criteria& c, double* out,
-                                   double* r2) {
-  const double* a = pt(m, m.tv[3 * t]);
-  const double* b = pt(m, m.tv[3 * t + 1]);
-  const double* d = pt(m, m.tv[3 * t + 2]);
-  const double bx = b[0] - a[0], by = b[1] - a[1], dx = d[0] - a[0], dy = d[1] - a[1];
-  const double bl = bx * bx + by * by, dl = dx * dx + dy * dy;
-  const double den = 2.0 * (bx * dy - by * dx);
-  const double ux = (dy * bl - by * dl) / den, uy = (bx * dl - dx * bl) / den;
-  *r2 = ux * ux + uy * uy;
-  out[0] = a[0] + ux;
-  out[1] = a[1] + uy;
-  if (c.offcenter_h <= 0) return;
+// Moves `out`, the circumcentre of triangle abd, to its off-centre.
+GDR_HD_INLINE void move_to_offcenter(const double* a, const double* b, const double* d,
+                                     const Criteria& c, double* out) {
   // Off-centre (Ungor): on the bisector of the shortest edge pq, at the height h|pq| where the
   // new triangle pq-o has an apex angle of about theta, when that is nearer than the
   // circumcentre. o is then |pq| / (2 sin(theta/2)) from p and q, 1.9|pq| at 30 degrees: new
@@ -147,10 +148,38 @@ GDR_HD_INLINE void splitting_point(const MeshView& m, int t, const Criteria& c, 
   }
 }
 
+// Circumcentre (or Ungor off-centre) of triangle t, and its squared circumradius.
+GDR_HD_INLINE void splitting_point(const MeshView& m, int t, const Criteria& c, double* out,
+                                   double* r2) {
+  const double* a = pt(m, m.tv[3 * t]);
+  const double* b = pt(m, m.tv[3 * t + 1]);
+  const double* d = pt(m, m.tv[3 * t + 2]);
+  const double bx = b[0] - a[0], by = b[1] - a[1], dx = d[0] - a[0], dy = d[1] - a[1];
+  const double bl = bx * bx + by * by, dl = dx * dx + dy * dy;
+  const double den = 2.0 * (bx * dy - by * dx);
+  const double ux = (dy * bl - by * dl) / den, uy = (bx * dl - dx * bl) / den;
+  *r2 = ux * ux + uy * uy;
+  out[0] = a[0] + ux;
+  out[1] = a[1] + uy;
+  if (c.offcenter_h > 0) move_to_offcenter(a, b, d, c, out);
+  // A near-flat triangle's circumcentre can be 2^480 away: it is brought back to 2^20 from
+  // a in the same direction, still far outside the domain (coordinates below 2), so that no
+  // predicate on it overflows; the walk towards it ends on a boundary subsegment as before.
+  const double far = 0x1p20, vx = out[0] - a[0], vy = out[1] - a[1], v2 = vx * vx + vy * vy;
+  if (v2 > far * far) {
+    const double f = far / sqrt(v2);
+    out[0] = a[0] + vx * f;
+    out[1] = a[1] + vy * f;
+  }
+  out[0] = on_grid(out[0], c.grid_exp);
+  out[1] = on_grid(out[1], c.grid_exp);
+}
+
 // Splitting point of subsegment ab. Concentric shells (Ruppert, Shewchuk): when exactly one
 // endpoint is an input vertex, split at a power-of-two distance from it, so that segments
 // meeting at a small angle are cut at matching radii and do not encroach each other forever.
-GDR_HD_INLINE void segment_split_point(const MeshView& m, int va, int vb, double* out) {
+GDR_HD_INLINE void segment_split_point(const MeshView& m, int va, int vb, int grid_exp,
+                                       double* out) {
   const double* a = pt(m, va);
   const double* b = pt(m, vb);
   const bool ia = m.ptype[va] == kInputPoint, ib = m.ptype[vb] == kInputPoint;
@@ -168,6 +197,8 @@ GDR_HD_INLINE void segment_split_point(const MeshView& m, int va, int vb, double
     out[0] = 0.5 * (a[0] + b[0]);
     out[1] = 0.5 * (a[1] + b[1]);
   }
+  out[0] = on_grid(out[0], grid_exp);
+  out[1] = on_grid(out[1], grid_exp);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -274,10 +305,10 @@ GDR_HD_INLINE unsigned shuffle_id(unsigned x, unsigned salt) {  // a bijection o
 }
 
 GDR_HD_INLINE void make_segment_candidate(const MeshView& m, int t, int k, unsigned klass,
-                                          unsigned id, Candidate& out) {
+                                          unsigned id, int grid_exp, Candidate& out) {
   const int a = m.tv[3 * t + next3(k)], b = m.tv[3 * t + prev3(k)];
   double p[2];
-  segment_split_point(m, a, b, p);
+  segment_split_point(m, a, b, grid_exp, p);
   const int nb = m.tn[3 * t + k];
   // The canonical side: both triangles may report the same subsegment.
   if (nb >= 0 && nb / 3 < t) {
@@ -329,7 +360,7 @@ struct ComputeSplittingPoints {
       return;
     }
     if (k < 3) {
-      make_segment_candidate(m, t, k, kClassEncroached, id, cand);
+      make_segment_candidate(m, t, k, kClassEncroached, id, c.grid_exp, cand);
       return;
     }
     double p[2], r2;
@@ -364,7 +395,7 @@ struct ComputeSplittingPoints {
       if (is_subseg(m, u, exit) || m.tn[3 * u + exit] < 0) {
         if (!is_subseg(m, u, exit)) return;  // outside an unconstrained boundary: cannot happen
         exec::atomic_or(&m.tflag[u], kSplitEdge0 << exit);
-        make_segment_candidate(m, u, exit, kClassWalkSegment, id, cand);
+        make_segment_candidate(m, u, exit, kClassWalkSegment, id, c.grid_exp, cand);
         return;
       }
       u = m.tn[3 * u + exit] / 3;

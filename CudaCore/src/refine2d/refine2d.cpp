@@ -4,6 +4,7 @@
 //   3. convert back and measure what is left bad.
 #include <algorithm>
 #include <chrono>
+#include <cfloat>
 #include <climits>
 #include <cmath>
 #include <cstdlib>
@@ -164,8 +165,9 @@ std::string rounded(double v) {
 
 // Size bounds whose least output cannot fit are refused before any time is spent on them,
 // unless the caller's Steiner cap keeps the output small enough.
+// (`o` and `area` in the caller's units, for the message.)
 void refuse_what_cannot_fit(const SizeEstimate& e, double capacity, int cdt_triangles,
-                            Backend b, const Refine2dOptions& o) {
+                            Backend b, const Refine2dOptions& o, double area) {
   double need = e.least;
   if (o.max_steiner_points >= 0)
     need = std::min(need, cdt_triangles + 2.0 * static_cast<double>(o.max_steiner_points));
@@ -175,7 +177,7 @@ void refuse_what_cannot_fit(const SizeEstimate& e, double capacity, int cdt_tria
   if (o.max_area > 0) bounds += (bounds.empty() ? "" : ", ") + ("maximum area " + rounded(o.max_area));
   const std::string ask = "the size bounds (" + bounds + ") ask for at least " +
                           rounded(std::min(need, 1e300)) + " triangles over the domain's area of " +
-                          rounded(e.area);
+                          rounded(area);
   if (need > kMaxTriangles)
     throw Error(Status::InvalidInput, ask + ", more than the " + rounded(kMaxTriangles) +
                                           " that the engine can number: raise the bounds");
@@ -205,21 +207,102 @@ long long steiner_cap(int cdt_points, const SizeEstimate& e, double capacity,
   return static_cast<long long>(std::max(0.0, std::min(wanted, capacity / 2 - cdt_points)));
 }
 
+// Exact rescaling (as gQM3d does): the input is multiplied by 2^k, which brings its largest
+// coordinate magnitude into [1, 2), so that the predicates neither overflow nor underflow
+// whatever units the input uses; the output is multiplied back by 2^-k. Both are exact when
+// every coordinate is a multiple of 2^-grid_exp after scaling: grid_exp is 260 (products of
+// four differences stay multiples of 2^-1040, docs/predicates.md), or less for inputs near
+// the smallest doubles, so that scaling back cannot round. The engine keeps new points on
+// that grid (kernels.h, on_grid); input coordinates off it are refused.
+struct PowerOfTwoScale {
+  int k = 0;
+  int grid_exp = 260;
+  explicit PowerOfTwoScale(const Pslg& in) {
+    double m = 0;
+    for (const Point2& p : in.points)
+      if (std::isfinite(p.x) && std::isfinite(p.y)) m = std::max({m, std::fabs(p.x), std::fabs(p.y)});
+    if (m > 0) k = -std::ilogb(m);
+    grid_exp = std::min(grid_exp, 1074 - k);
+  }
+  Point2 apply(const Point2& p, int sign) const {
+    return {std::ldexp(p.x, sign * k), std::ldexp(p.y, sign * k)};
+  }
+  // Refuses coordinates that are not multiples of 2^-grid_exp once scaled: magnitudes more
+  // than about 2^208 (1e62) below the largest, where the predicates could not stay exact.
+  void check_spread(const Pslg& in) const {
+    long long count = 0;
+    std::size_t first = 0;
+    for (std::size_t i = 0; i < in.points.size(); ++i) {
+      const Point2 q = apply(in.points[i], 1);
+      bool off = false;
+      for (const double v : {q.x, q.y})
+        off = off || (std::isfinite(v) && std::ldexp(v, grid_exp) != std::rint(std::ldexp(v, grid_exp)));
+      if (off && count++ == 0) first = i;
+    }
+    if (!count) return;
+    const Point2& p = in.points[first];
+    std::ostringstream msg;
+    msg.precision(17);
+    msg << "point " << first + in.first_index << " (" << p.x << ", " << p.y
+        << ") has a coordinate too small beside the largest coordinate magnitude, 2^" << -k
+        << ", for exact arithmetic";
+    if (count > 1) msg << " (" << count << " points in all)";
+    msg << ": nonzero coordinates must be multiples of 2^" << -(grid_exp + k)
+        << " (about 2^-208 of the largest); round such coordinates to 0 or remove the point";
+    throw Error(Status::InvalidInput, msg.str());
+  }
+  Pslg scaled(const Pslg& in) const {
+    Pslg out = in;
+    for (Point2& p : out.points) p = apply(p, 1);
+    for (Point2& p : out.holes) p = apply(p, 1);
+    return out;
+  }
+  // The kernels compare squared edge lengths and twice the area: a bound whose scaled square
+  // would overflow is larger than any element (off); one that would underflow is refused.
+  Refine2dOptions scaled(const Refine2dOptions& o) const {
+    Refine2dOptions out = o;
+    const double l = std::ldexp(o.max_edge_length, k), a = std::ldexp(o.max_area, 2 * k);
+    const auto refuse = [&](const std::string& what, double v, const char* square) {
+      throw Error(Status::InvalidInput,
+                  what + " " + rounded(v) + " cannot be honoured: its " + square +
+                      " underflows the range of doubles beside the input's largest coordinate "
+                      "magnitude, 2^" + std::to_string(-k) + " (it is more than 2^500 smaller)");
+    };
+    if (o.max_edge_length > 0 && std::isfinite(o.max_edge_length)) {
+      if (!(l * l >= DBL_MIN)) refuse("maximum edge length", o.max_edge_length, "square");
+      out.max_edge_length = l * l <= DBL_MAX ? l : 0.0;
+    }
+    if (o.max_area > 0 && std::isfinite(o.max_area)) {
+      if (!(2 * a >= DBL_MIN)) refuse("maximum area", o.max_area, "double");
+      out.max_area = 2 * a <= DBL_MAX ? a : 0.0;
+    }
+    return out;
+  }
+};
+
 }  // namespace
 
-Refine2dResult refine_2d(const Pslg& input, const Refine2dOptions& options, const Callbacks& cb) {
+Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_options,
+                         const Callbacks& cb) {
   const auto t_start = Clock::now();
   Refine2dResult result;
   Refine2dStats& st = result.stats;
-  st.input_points = static_cast<long long>(input.points.size());
-  st.input_segments = static_cast<long long>(input.segments.size());
+  st.input_points = static_cast<long long>(unscaled.points.size());
+  st.input_segments = static_cast<long long>(unscaled.segments.size());
+  const PowerOfTwoScale scale(unscaled);
+  scale.check_spread(unscaled);
+  const Pslg input = scale.scaled(unscaled);
+  const Refine2dOptions options = scale.scaled(user_options);
   auto aborted = [&] { return cb.abort && cb.abort(); };
   auto progress = [&](double f, const std::string& what) {
     if (cb.progress) cb.progress(f, what);
   };
 
   progress(0.0, "checking input");
-  const r2d::CleanPslg pslg = r2d::clean_input(input, options, cb);
+  r2d::CleanPslg pslg = r2d::clean_input(input, options, cb);
+  for (std::size_t v = 0; v < pslg.points.size(); ++v)  // intersection points onto the grid
+    if (pslg.point_origin[v] < 0)
+      for (double* c : {&pslg.points[v].x, &pslg.points[v].y}) *c = r2d::on_grid(*c, scale.grid_exp);
   st.input_seconds = since(t_start);
   st.duplicate_points_merged = pslg.duplicates_merged;
   if (aborted()) throw Error(Status::Aborted, "aborted by the caller");
@@ -231,7 +314,8 @@ Refine2dResult refine_2d(const Pslg& input, const Refine2dOptions& options, cons
   if (aborted()) throw Error(Status::Aborted, "aborted by the caller");
   const int cdt_points = mesh.points();
 
-  const r2d::Criteria crit = make_criteria(options);
+  r2d::Criteria crit = make_criteria(options);
+  crit.grid_exp = scale.grid_exp;
   const SizeEstimate estimate = estimate_size(mesh, options);
   st.backend_used = resolve_backend(options.backend,
                                     static_cast<std::size_t>(std::min(estimate.typical, 1e15)),
@@ -245,7 +329,8 @@ Refine2dResult refine_2d(const Pslg& input, const Refine2dOptions& options, cons
   params.criteria = crit;
   if (options.refine) {
     const double capacity = triangle_capacity(st.backend_used);
-    refuse_what_cannot_fit(estimate, capacity, mesh.triangles(), st.backend_used, options);
+    refuse_what_cannot_fit(estimate, capacity, mesh.triangles(), st.backend_used, user_options,
+                           std::ldexp(estimate.area, -2 * scale.k));
     params.max_steiner = steiner_cap(cdt_points, estimate, capacity, options);
     st.steiner_cap = params.max_steiner;
     st.automatic_steiner_cap = options.max_steiner_points < 0;
@@ -302,7 +387,7 @@ Refine2dResult refine_2d(const Pslg& input, const Refine2dOptions& options, cons
   out.triangles.resize(nt);
 #pragma omp parallel for
   for (int i = 0; i < np; ++i) {
-    out.points[i] = Point2{mesh_out.xy[2 * i], mesh_out.xy[2 * i + 1]};
+    out.points[i] = scale.apply(Point2{mesh_out.xy[2 * i], mesh_out.xy[2 * i + 1]}, -1);
     out.point_type[i] = static_cast<PointType>(mesh_out.ptype[i]);
   }
 #pragma omp parallel for
@@ -322,15 +407,20 @@ Refine2dResult refine_2d(const Pslg& input, const Refine2dOptions& options, cons
   // The smallest angle faces the shortest edge and is at most 60 degrees, where the sine
   // grows: track the least sin^2 = (2 area)^2 / (product of the two longer squared edges),
   // and take one arcsine at the end (no trigonometry per triangle).
+  // (On the scaled coordinates, where no product overflows or underflows.)
+  const auto scaled_point = [&](int v) { return Point2{mesh_out.xy[2 * v], mesh_out.xy[2 * v + 1]}; };
+  const auto scaled_area = [&](const std::array<int, 3>& tri) {
+    return triangle_area(scaled_point(tri[0]), scaled_point(tri[1]), scaled_point(tri[2]));
+  };
   double total_area = 0, min_sin2 = 1;
 #pragma omp parallel for reduction(+ : total_area) reduction(min : min_sin2)
   for (int t = 0; t < nt; ++t) {
-    const Point2 &a = out.points[out.triangles[t][0]], &b = out.points[out.triangles[t][1]],
-                 &c = out.points[out.triangles[t][2]];
+    const Point2 a = scaled_point(out.triangles[t][0]), b = scaled_point(out.triangles[t][1]),
+                 c = scaled_point(out.triangles[t][2]);
     const double area = triangle_area(a, b, c);
     total_area += area;
     const double la = squared_distance(b, c), lb = squared_distance(c, a), lc = squared_distance(a, b);
-    const double others = la * lb * lc / std::min({la, lb, lc});
+    const double others = std::max({la * lb, lb * lc, lc * la});  // the two longer edges
     min_sin2 = std::min(min_sin2, others > 0 ? 4 * area * area / others : 0.0);
   }
   const double min_angle = std::asin(std::sqrt(std::min(1.0, min_sin2))) * 180.0 / kPi;
@@ -338,7 +428,7 @@ Refine2dResult refine_2d(const Pslg& input, const Refine2dOptions& options, cons
   long long protected_bad = 0;
   for (const int code : mesh_out.bad) {
     const auto& tri = out.triangles[code >> 1];
-    bad_area += triangle_area(out.points[tri[0]], out.points[tri[1]], out.points[tri[2]]);
+    bad_area += scaled_area(tri);
     protected_bad += code & 1;
   }
   const long long bad = static_cast<long long>(mesh_out.bad.size());
