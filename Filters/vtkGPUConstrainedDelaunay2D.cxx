@@ -110,6 +110,12 @@ int vtkGPUConstrainedDelaunay2D::RequestData(vtkInformation* vtkNotUsed(request)
     return 0;
   }
 
+  if (!this->TriangleSwitches.empty() &&
+    !run.Execute([&]() { gdr::apply_triangle_switches(this->TriangleSwitches, options); }))
+  {
+    return 0;
+  }
+
   gdr::Refine2dResult result;
   const gdr::Callbacks callbacks = run.GetCallbacks();
   if (!run.Execute([&]() { result = gdr::refine_2d(pslg, options, callbacks); }))
@@ -154,4 +160,5 @@ void vtkGPUConstrainedDelaunay2D::PrintSelf(ostream& os, vtkIndent indent)
      << (this->Backend == GPU ? "GPU" : (this->Backend == CPU ? "CPU" : "Auto")) << "\n";
   os << indent << "RemoveExterior: " << (this->RemoveExterior ? "On" : "Off") << "\n";
   os << indent << "StrictInput: " << (this->StrictInput ? "On" : "Off") << "\n";
+  os << indent << "TriangleSwitches: " << this->TriangleSwitches << "\n";
 }

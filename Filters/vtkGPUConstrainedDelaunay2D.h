@@ -35,6 +35,8 @@
 #include "GPUDelaunayFiltersModule.h" // for export macro
 #include "vtkPolyDataAlgorithm.h"
 
+#include <string> // for TriangleSwitches
+
 class GPUDELAUNAYFILTERS_EXPORT vtkGPUConstrainedDelaunay2D : public vtkPolyDataAlgorithm
 {
 public:
@@ -137,6 +139,17 @@ public:
 
   ///@{
   /**
+   * Triangle's switch string ("pq30a0.1", see gdr::apply_triangle_switches), for users who
+   * know Triangle by heart. When set it overrides MinimumAngle, MaximumArea,
+   * MaximumSteinerPoints, RemoveExterior and refinement; an unknown or unsupported switch
+   * is an error. Default empty (the properties alone).
+   */
+  vtkSetStdStringFromCharMacro(TriangleSwitches);
+  vtkGetCharFromStdStringMacro(TriangleSwitches);
+  ///@}
+
+  ///@{
+  /**
    * Optional hole seed points (input port 1).
    */
   void SetHoleSeedsConnection(vtkAlgorithmOutput* output);
@@ -160,6 +173,7 @@ protected:
   int Backend = AUTO;
   vtkTypeBool RemoveExterior = false;
   vtkTypeBool StrictInput = false;
+  std::string TriangleSwitches;
 
 private:
   vtkGPUConstrainedDelaunay2D(const vtkGPUConstrainedDelaunay2D&) = delete;

@@ -40,15 +40,21 @@ vtk_module_wrap_python(
   INSTALL_HEADERS    OFF
   BUILD_STATIC       OFF)
 
-# The package's __init__: imports VTK's base modules first, then the wrapped classes.
-set(_gdr_python_init "${CMAKE_BINARY_DIR}/${GDR_PYTHON_DESTINATION}/gpudelaunay/__init__.py")
+# The package's __init__: imports VTK's base modules first, then the wrapped classes, then
+# the NumPy API (Python/gpudelaunay: refine_2d, MeshingError, ...).
+set(_gdr_python_package "${CMAKE_BINARY_DIR}/${GDR_PYTHON_DESTINATION}/gpudelaunay")
+set(_gdr_python_init "${_gdr_python_package}/__init__.py")
 file(GENERATE OUTPUT "${_gdr_python_init}" CONTENT
-"\"\"\"GPU Delaunay mesh refinement filters for VTK (vtkGPUConstrainedDelaunay2D,
-vtkGPUQualityTetMesh).\"\"\"
+"\"\"\"GPU Delaunay mesh refinement for VTK (vtkGPUConstrainedDelaunay2D,
+vtkGPUQualityTetMesh) and NumPy (refine_2d).\"\"\"
 import vtkmodules.vtkCommonExecutionModel  # noqa: F401  (base classes)
 from .GPUDelaunayFilters import *  # noqa: F401,F403
+from .meshing import MeshingError, MeshingWarning, MeshResult, refine_2d  # noqa: F401
 ")
-install(FILES "${_gdr_python_init}" DESTINATION "${GDR_PYTHON_DESTINATION}/gpudelaunay")
+configure_file("${PROJECT_SOURCE_DIR}/Python/gpudelaunay/meshing.py"
+               "${_gdr_python_package}/meshing.py" COPYONLY)
+install(FILES "${_gdr_python_init}" "${_gdr_python_package}/meshing.py"
+        DESTINATION "${GDR_PYTHON_DESTINATION}/gpudelaunay")
 
 # --- ParaView plugin GPUDelaunayRefinement ---------------------------------------
 paraview_plugin_scan(

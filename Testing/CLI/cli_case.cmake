@@ -6,11 +6,12 @@
 # tetrahedron of JSON's stats/output_tets. [-DABSENT=list of files that must not exist
 # after the run] [-DFOLDERS=list of folders made in WORK before the run]
 # [-DLINKS=list of name=target: symbolic links made in WORK before the run]
-# [-DULIMIT_V=KiB: the address-space limit to run under]. Lists are joined by '|', JSON paths
+# [-DULIMIT_V=KiB: the address-space limit to run under] [-DFILE_MATCH=list of file=regex:
+# written files whose contents must match]. Lists are joined by '|', JSON paths
 # separate members by '/'. Always: gdr never changes a COPY file (its input), and leaves no
 # temporary file of its atomic writes (.NAME.*.tmp) behind.
 cmake_minimum_required(VERSION 3.20)
-foreach(var ARGS FILES JSON_EQUAL JSON_POSITIVE COPY ABSENT FOLDERS LINKS)
+foreach(var ARGS FILES JSON_EQUAL JSON_POSITIVE COPY ABSENT FOLDERS LINKS FILE_MATCH)
   string(REPLACE "|" ";" ${var} "${${var}}")
 endforeach()
 file(REMOVE_RECURSE "${WORK}")
@@ -50,6 +51,14 @@ endif()
 foreach(f IN LISTS FILES)
   if(NOT EXISTS "${WORK}/${f}")
     message(FATAL_ERROR "missing output file ${f}")
+  endif()
+endforeach()
+foreach(check IN LISTS FILE_MATCH)
+  string(REGEX MATCH "^[^=]*" f "${check}")
+  string(REGEX REPLACE "^[^=]*=" "" regex "${check}")
+  file(READ "${WORK}/${f}" contents)
+  if(NOT contents MATCHES "${regex}")
+    message(FATAL_ERROR "${f} does not match '${regex}':\n${contents}")
   endif()
 endforeach()
 foreach(f IN LISTS ABSENT)

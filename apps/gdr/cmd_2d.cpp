@@ -1,4 +1,5 @@
 // `gdr 2d`: quality constrained Delaunay refinement of a planar straight-line graph.
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -28,15 +29,20 @@ const char* kHelp2d = R"(gdr 2d - quality constrained Delaunay refinement of a 2
 
 Usage:
   gdr 2d INPUT.poly -o OUTPUT [options]
+  gdr 2d -pq30a0.1 INPUT.poly -o OUTPUT [options]     (Triangle's switches)
 
 INPUT is a planar straight-line graph in Triangle's .poly format (points, segments, optional
-hole seeds), or a .node file (points only). Holes are emptied from their seeds; the rest of
-the convex hull is meshed too unless --remove-exterior is given. OUTPUT is written by its
-extension:
+hole seeds and regions), or a .node file (points only). Holes are emptied from their seeds;
+the rest of the convex hull is meshed too unless --remove-exterior is given. A region's
+maximum area bounds the triangles of its region, and its attribute goes to them (cell
+array Region); boundary markers and point attributes are carried to the output, as
+Triangle does (point attributes interpolated linearly at new points). OUTPUT is written by
+its extension:
   .vtu / .vtp   VTK XML (ParaView) with cell arrays MinAngle, MaxAngle, RadiusEdgeRatio,
-                Area, IsBad and point array PointType (0 input, 1 on a segment, 2 free)
+                Area, IsBad (and Region), point arrays PointType (0 input, 1 on a segment,
+                2 free), BoundaryMarker (and PointAttributes)
   .node / .ele  Triangle's format: -o BASE.node (or BASE.ele) writes three files,
-                BASE.node, BASE.ele and BASE.poly (the subsegments)
+                BASE.node, BASE.ele and BASE.poly (the subsegments with their markers)
 Without -o the mesh is computed, summarized and (with --check) validated, but not written.
 gdr never writes over its input: an output (or --stats-json) that would replace INPUT, or
 the .node beside a .poly INPUT (where a .poly without points takes them from), is refused
@@ -44,6 +50,17 @@ before anything is read. Each file is written in full under a temporary name, th
 an existing output is only ever replaced by a complete new one. Ctrl-C (or SIGTERM) stops
 the run: it prints "interrupted", exits with 130 (143) and leaves the outputs as they were,
 unless it comes while they are being written (then they are completed first).
+
+Triangle's switches, for users who know Triangle by heart, as one argument with one dash:
+  p  the segments bound the domain (the exterior is removed unless c is given)
+  c  keep the convex hull meshed        q[DEG]  minimum angle (20 without a number)
+  a<A>  maximum triangle area           S<N>    Steiner point cap
+  a  the regions' maximum areas         A       the regions' attributes (Region)
+  z  number output files from 0         Q quiet         C check the mesh (--check)
+Without q or a Triangle does not refine, nor does gdr; without a and A the regions are not
+used (without switches they always are). Other switches are refused. Long
+options after the switches refine what they set.
+The .node/.ele/.poly output counts from 0 or 1 as the input does (Triangle's way).
 
 Quality and size:
   --min-angle DEG         smallest angle wanted, in degrees (default 20, at most 34;
@@ -77,12 +94,15 @@ Examples:
   gdr 2d shape.poly -o shape.vtu --min-angle 30 --max-area 0.5 --check
   gdr 2d map.poly -o map.vtp --remove-exterior --backend gpu --stats-json map.json
   gdr 2d shape.poly -o shape.node --cdt-only
+  gdr 2d -pq30a0.1 shape.poly -o shape.node
 
 Exit codes: 0 ok, 1 invalid mesh (--check), 2 usage error (also: an output that would
 overwrite an input), 3 input error, 4 device error, 5 internal error, 130 interrupted.
 )";
 
 struct Args2d {
+  std::string switches;  // Triangle's switch string, when given
+  bool zero_based = false;
   std::string input;
   std::string output;
   std::string stats_json;
@@ -134,7 +154,32 @@ Args2d parse_2d(const std::vector<std::string>& args) {
       {"quiet", 'q', false, [&](const std::string&) { a.quiet = true; }},
       {"help", 'h', false, [&](const std::string&) { a.help = true; }},
   };
-  const auto positional = parse_options(cmd, args, specs);
+  // Triangle's switch string ("-pq30a0.1"): one dash and more than one letter. It sets the
+  // options first; long options after it refine them.
+  std::vector<std::string> rest;
+  bool options_done = false;
+  for (const std::string& arg : args) {
+    options_done = options_done || arg == "--";
+    const bool triangle = !options_done && arg.size() > 2 && arg[0] == '-' &&
+                          std::isalpha(static_cast<unsigned char>(arg[1]));
+    if (!triangle) {
+      rest.push_back(arg);
+      continue;
+    }
+    if (!a.switches.empty())
+      throw UsageError(cmd, "two Triangle switch strings, '" + a.switches + "' and '" + arg +
+                                "': give one");
+    a.switches = arg;
+    try {
+      const TriangleSwitches t = apply_triangle_switches(arg, a.options);
+      a.zero_based = t.zero_based;
+      a.quiet = a.quiet || t.quiet;
+      a.check = a.check || t.check;
+    } catch (const Error& e) {
+      throw UsageError(cmd, e.what());
+    }
+  }
+  const auto positional = parse_options(cmd, rest, specs);
   if (a.help) return a;
   a.input = single_input(cmd, positional);
   if (!a.output.empty() && !output_extension_supported(a.output))
@@ -216,6 +261,9 @@ void write_stats_json(const std::string& path, const Args2d& a, const Refine2dRe
   j.field("off_centers", o.off_centers);
   j.field("remove_exterior", o.remove_exterior);
   j.field("strict_input", o.strict_input);
+  j.field("triangle_switches", a.switches);
+  j.field("region_areas", o.region_areas);
+  j.field("region_attributes", o.region_attributes);
   j.field("refine", o.refine);
   j.field("backend", to_string(o.backend));
   j.end_object();
@@ -344,7 +392,13 @@ int mesh_2d(const Args2d& a, bool& written) {
     bar.update(-1, "writing " + a.output);
     t0 = std::chrono::steady_clock::now();
     make_parent_dirs(a.output);
-    io::write_mesh(a.output, result.mesh, triangle_attributes(result.mesh, a.options.min_angle));
+    if (a.zero_based) {
+      TriMesh zero = result.mesh;
+      zero.first_index = 0;
+      io::write_mesh(a.output, zero, triangle_attributes(zero, a.options.min_angle));
+    } else {
+      io::write_mesh(a.output, result.mesh, triangle_attributes(result.mesh, a.options.min_angle));
+    }
     written = true;
     t.write = since(t0);
     stop_if_interrupted();

@@ -8,16 +8,18 @@
 
 namespace gdr::io {
 
-// Triangle .poly (points, segments, holes; 0- or 1-based as the file says). A .poly whose
-// point section is empty takes its points from the .node file beside it. Also reads .node.
-// Attributes, boundary markers and regional attributes are skipped.
+// Triangle .poly (points with their attributes and boundary markers, segments with their
+// markers, holes, regional attributes and area constraints; 0- or 1-based as the file
+// says). A .poly whose point section is empty takes its points from the .node file beside
+// it. Also reads .node.
 Pslg read_poly(const std::string& path);
 // The files read_poly(path) may read: `path`, and for a .poly the .node beside it.
 std::vector<std::string> poly_input_files(const std::string& path);
 
-// Triangle .node/.ele as a TriMesh. A .poly with no points beside the .ele (same base name,
-// as write_triangle writes it) gives the subsegments; its segment markers are read back
-// into subsegment_source (-1 when absent).
+// Triangle .node/.ele as a TriMesh (point attributes and markers, the triangles' first
+// attribute as triangle_region). A .poly with no points beside the .ele (same base name,
+// as write_triangle writes it) gives the subsegments and their boundary markers
+// (subsegment_markers; subsegment_source stays empty).
 TriMesh read_triangle_mesh(const std::string& node_path, const std::string& ele_path);
 
 // Surfaces. Faces with more than three corners are ear clipped in their plane into
@@ -69,14 +71,19 @@ struct Attributes {
 };
 
 // VTK XML (.vtu unstructured grid, .vtp polydata), written by the core itself so the
-// core-only build (e.g. the GPU machine) writes results too.
+// core-only build (e.g. the GPU machine) writes results too. A TriMesh's file also carries
+// what the mesh has of Triangle's data: the cell array Region (triangle_region), the point
+// arrays BoundaryMarker (point_markers) and PointAttributes (point_attributes).
 void write_vtu(const std::string& path, const TriMesh& mesh, const Attributes& attributes = {});
 void write_vtp(const std::string& path, const TriMesh& mesh, const Attributes& attributes = {});
 // A TetMesh's .vtu also carries the point array PointType and, when the mesh has regions,
 // the cell array Region (its tet_region).
 void write_vtu(const std::string& path, const TetMesh& mesh, const Attributes& attributes = {});
 
-// Triangle .node/.ele (+ .poly of subsegments); TetGen .node/.ele/.face, the .face with the
+// Triangle .node/.ele (+ .poly of subsegments), numbered from the mesh's first_index, with
+// point attributes and boundary markers in the .node, the regional attribute in the .ele and
+// the subsegments' boundary markers in the .poly, as Triangle writes them; TetGen
+// .node/.ele/.face, the .face with the
 // subfaces' input facet ids (subface_facet) as boundary markers when the mesh has them.
 // `base` has no extension.
 void write_triangle(const std::string& base, const TriMesh& mesh);

@@ -9,11 +9,27 @@ namespace gdr {
 struct Point2 { double x = 0, y = 0; };
 struct Point3 { double x = 0, y = 0, z = 0; };
 
-// Planar straight-line graph: vertices, segments (vertex index pairs, 0-based), hole seeds.
+// A region seed of a planar straight-line graph (Triangle's regional attribute and area
+// constraint): the part of the domain that holds `point`, bounded by segments, gets
+// `attribute`, and, when max_area > 0, that area bound.
+struct RegionSeed2 {
+  Point2 point;
+  double attribute = 0;
+  double max_area = 0;  // <= 0: none
+};
+
+// Planar straight-line graph: vertices, segments (vertex index pairs, 0-based), hole seeds,
+// and what Triangle's files may carry besides: per-point attributes and boundary markers,
+// per-segment boundary markers, region seeds (each empty when the input has none).
 struct Pslg {
   std::vector<Point2> points;
   std::vector<std::array<int, 2>> segments;
   std::vector<Point2> holes;
+  int point_attribute_count = 0;
+  std::vector<double> point_attributes;  // point_attribute_count values per point
+  std::vector<int> point_markers;        // per point
+  std::vector<int> segment_markers;      // per segment
+  std::vector<RegionSeed2> regions;
   // The number of the first point (and segment) in the file it was read from (Triangle files
   // count from 0 or 1): messages about the input number items as the file does.
   int first_index = 0;
@@ -52,6 +68,17 @@ struct TriMesh {
   // Subsegments: mesh edges lying on input segments, with the input segment they belong to.
   std::vector<std::array<int, 2>> subsegments;
   std::vector<int> subsegment_source;       // index into the input segments, or -1 for hull edges
+  // The number of the first point in Triangle files written from the mesh (the input's own
+  // numbering, 0 or 1, as Triangle writes its output).
+  int first_index = 0;
+  // As Triangle's output carries them (each empty when unknown): boundary markers of the
+  // subsegments and points, point attributes (interpolated linearly at Steiner points), and
+  // per triangle the attribute of its region.
+  std::vector<int> subsegment_markers;   // per subsegment
+  std::vector<int> point_markers;        // per point
+  int point_attribute_count = 0;
+  std::vector<double> point_attributes;  // point_attribute_count values per point
+  std::vector<double> triangle_region;   // per triangle
 };
 
 // A tetrahedral mesh. Tetrahedra are positively oriented (orient3d > 0).

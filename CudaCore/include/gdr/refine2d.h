@@ -34,6 +34,11 @@ struct Refine2dOptions {
   // (as for Triangle and CGAL): segments are split there, with a warning that counts them.
   // strict_input refuses such input instead (SelfIntersectingInput, naming the items).
   bool strict_input = false;
+  // Region seeds (Pslg::regions): their maximum areas bound the triangles of their regions
+  // on top of max_area (Triangle's -a without a number), and their attributes are given to
+  // the triangles of their regions (TriMesh::triangle_region, Triangle's -A).
+  bool region_areas = true;
+  bool region_attributes = true;
   bool refine = true;              // false: only the constrained Delaunay triangulation
   Backend backend = Backend::Auto;
   // Auto uses the GPU from this estimated output size. 0 (default): chosen per run, for the
@@ -77,6 +82,21 @@ struct Refine2dResult {
   TriMesh mesh;
   Refine2dStats stats;
 };
+
+// Triangle's command-line switches, for users who know Triangle by heart: "pq30a0.1" (a
+// leading '-' is allowed) sets `options` as Triangle would read it. p: the input's segments
+// bound the domain (remove_exterior unless c); c: keep the convex hull meshed; q[angle]:
+// minimum angle (20 without a number); a<area>: maximum area; a without a number: the
+// regions' area bounds; A: the regions' attributes; S<n>: Steiner point cap. Without q or a
+// there is no refinement (refine = false), without q no angle bound, and without a and A no
+// use of the regions, as in Triangle. The switches for the caller: z, Q and C. Any other switch is refused
+// (InvalidInput, naming it), never ignored.
+struct TriangleSwitches {
+  bool zero_based = false;  // z: number the output files from 0 whatever the input does
+  bool quiet = false;       // Q
+  bool check = false;       // C: check the output (gdr's validators)
+};
+TriangleSwitches apply_triangle_switches(const std::string& switches, Refine2dOptions& options);
 
 // Checks input and parameters; throws gdr::Error naming the offending items.
 void validate_refine2d_input(const Pslg& input, const Refine2dOptions& options);

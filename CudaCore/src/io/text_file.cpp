@@ -139,10 +139,15 @@ NodeList read_node_section(TextFile& file, const Tokens& header, int dimension) 
   }
   nodes.dimension = dimension;
   nodes.coords.reserve(n * dimension);
+  const long long attributes = header.size() >= 3 ? file.integer(header[2], "attribute count") : 0;
+  if (attributes < 0 || attributes > 1000) file.fail("attribute count " + std::to_string(attributes) + " out of range [0, 1000]");
+  const bool markers = header.size() >= 4 && file.integer(header[3], "boundary marker count") != 0;
+  nodes.attribute_count = static_cast<int>(attributes);
+  const std::size_t columns = 1 + dimension + attributes + (markers ? 1 : 0);
   Tokens t;
   for (std::size_t i = 0; i < n; ++i) {
     const std::string what = "point " + std::to_string(i);
-    file.expect(t, 1 + dimension, what);
+    file.expect(t, columns, what);
     const long long index = file.integer(t[0], "index of " + what);
     if (i == 0) {
       if (index != 0 && index != 1) file.fail("first point index must be 0 or 1, found " +
@@ -156,6 +161,10 @@ NodeList read_node_section(TextFile& file, const Tokens& header, int dimension) 
     static const char* axis[3] = {"x", "y", "z"};
     for (int d = 0; d < dimension; ++d)
       nodes.coords.push_back(file.real(t[1 + d], std::string(axis[d]) + " of " + what));
+    for (long long k = 0; k < attributes; ++k)
+      nodes.attributes.push_back(file.real(t[1 + dimension + k], "attribute of " + what));
+    if (markers)
+      nodes.markers.push_back(static_cast<int>(file.integer(t[1 + dimension + attributes], "boundary marker of " + what)));
   }
   return nodes;
 }

@@ -45,12 +45,15 @@ class TextFile {
 };
 
 // A node section (Triangle / TetGen .node, or the first part of a .poly) after its header
-// line `header` = "<count> <dimension> [<attributes> [<markers>]]". Attributes and boundary
-// markers are skipped; the first index (0 or 1) sets the numbering of the whole file.
+// line `header` = "<count> <dimension> [<attributes> [<markers>]]", with its attributes and
+// boundary markers; the first index (0 or 1) sets the numbering of the whole file.
 struct NodeList {
   int dimension = 0;
   int first_index = 0;
   std::vector<double> coords;  // dimension values per point
+  int attribute_count = 0;
+  std::vector<double> attributes;  // attribute_count values per point
+  std::vector<int> markers;        // per point, when the header says there are markers
   std::size_t size() const { return dimension ? coords.size() / dimension : 0; }
 };
 NodeList read_node_section(TextFile& file, const Tokens& header, int dimension);

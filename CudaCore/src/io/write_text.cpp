@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <type_traits>
 
 #include "gdr/error.h"
 #include "gdr/io.h"
@@ -98,18 +99,23 @@ class OutputFiles {
   std::vector<File> pending_;
 };
 
-template <std::size_t N>
+// Rows "index v0 v1 ... [marker]", elements and vertices numbered from `first`; the marker
+// (an int marker or a double attribute) -1 where `markers` is short.
+template <std::size_t N, class Marker = int>
 void append_elements(std::string& out, const std::vector<std::array<int, N>>& elements,
-                     const std::vector<int>* markers) {
+                     const std::vector<Marker>* markers, int first = 0) {
   append_rows(out, elements.size(), [&](std::string& text, std::size_t i) {
-    append_number(text, static_cast<long long>(i));
+    append_number(text, static_cast<long long>(i) + first);
     for (int v : elements[i]) {
       text += ' ';
-      append_number(text, static_cast<long long>(v));
+      append_number(text, static_cast<long long>(v) + first);
     }
     if (markers) {
       text += ' ';
-      append_number(text, static_cast<long long>(i < markers->size() ? (*markers)[i] : -1));
+      if constexpr (std::is_same_v<Marker, double>)
+        append_number(text, i < markers->size() ? (*markers)[i] : -1.0);
+      else
+        append_number(text, static_cast<long long>(i < markers->size() ? (*markers)[i] : -1));
     }
     text += '\n';
   });
@@ -124,15 +130,27 @@ void check_indices(const char* what, std::size_t points, const P& elements) {
                                               std::to_string(v) + " of " + std::to_string(points));
 }
 
-// Files are 0-based, as both Triangle and TetGen accept.
-std::string node_file_2d(const std::vector<Point2>& points) {
-  std::string out = std::to_string(points.size()) + " 2 0 0\n";
-  append_rows(out, points.size(), [&](std::string& text, std::size_t i) {
-    append_number(text, static_cast<long long>(i));
+// TetGen files are 0-based, as TetGen accepts; Triangle files count from the mesh's
+// first_index, with its point attributes and boundary markers.
+std::string node_file_2d(const TriMesh& m) {
+  const std::size_t n = m.points.size();
+  const int na = m.point_attributes.size() == n * m.point_attribute_count ? m.point_attribute_count : 0;
+  const bool markers = !m.point_markers.empty() && m.point_markers.size() == n;
+  std::string out = std::to_string(n) + " 2 " + std::to_string(na) + (markers ? " 1\n" : " 0\n");
+  append_rows(out, n, [&](std::string& text, std::size_t i) {
+    append_number(text, static_cast<long long>(i) + m.first_index);
     text += ' ';
-    append_number(text, points[i].x);
+    append_number(text, m.points[i].x);
     text += ' ';
-    append_number(text, points[i].y);
+    append_number(text, m.points[i].y);
+    for (int k = 0; k < na; ++k) {
+      text += ' ';
+      append_number(text, m.point_attributes[i * na + k]);
+    }
+    if (markers) {
+      text += ' ';
+      append_number(text, static_cast<long long>(m.point_markers[i]));
+    }
     text += '\n';
   });
   return out;
@@ -170,13 +188,17 @@ void write_triangle(const std::string& base, const TriMesh& mesh) {
   check_indices("a triangle", mesh.points.size(), mesh.triangles);
   check_indices("a subsegment", mesh.points.size(), mesh.subsegments);
   OutputFiles files;
-  files.write(base + ".node", node_file_2d(mesh.points));
-  std::string ele = std::to_string(mesh.triangles.size()) + " 3 0\n";
-  append_elements(ele, mesh.triangles, nullptr);
+  const int first = mesh.first_index;
+  files.write(base + ".node", node_file_2d(mesh));
+  // The regional attribute as the triangles' one attribute, as Triangle's -A writes it.
+  const bool region = !mesh.triangles.empty() && mesh.triangle_region.size() == mesh.triangles.size();
+  std::string ele = std::to_string(mesh.triangles.size()) + (region ? " 3 1\n" : " 3 0\n");
+  append_elements(ele, mesh.triangles, region ? &mesh.triangle_region : nullptr, first);
   files.write(base + ".ele", ele);
-  // Subsegments as a point-less .poly; the segment marker is the source input segment.
-  std::string poly = "0 2 0 0\n" + std::to_string(mesh.subsegments.size()) + " 1\n";
-  append_elements(poly, mesh.subsegments, &mesh.subsegment_source);
+  // Subsegments as a point-less .poly with their boundary markers, as Triangle writes them.
+  const bool markers = !mesh.subsegments.empty() && mesh.subsegment_markers.size() == mesh.subsegments.size();
+  std::string poly = "0 2 0 0\n" + std::to_string(mesh.subsegments.size()) + (markers ? " 1\n" : " 0\n");
+  append_elements(poly, mesh.subsegments, markers ? &mesh.subsegment_markers : nullptr, first);
   poly += "0\n";
   files.write(base + ".poly", poly);
   files.commit();

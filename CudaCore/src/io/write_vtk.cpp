@@ -117,10 +117,14 @@ void fill_cells(Piece& piece, const std::vector<std::array<int, N>>& cells,
   }
 }
 
-std::string vtk_file(const Piece& piece, const Attributes& attributes, bool polydata) {
+// `mesh_arrays`: arrays the mesh itself carries, written after the caller's `attributes`.
+std::string vtk_file(const Piece& piece, const Attributes& attributes, bool polydata,
+                     const Attributes& mesh_arrays = {}) {
   const std::size_t np = piece.points.size() / 3, nc = piece.offsets.size();
-  check_arrays(attributes.point_data, np, "point");
-  check_arrays(attributes.cell_data, nc, "cell");
+  for (const Attributes* a : {&attributes, &mesh_arrays}) {
+    check_arrays(a->point_data, np, "point");
+    check_arrays(a->cell_data, nc, "cell");
+  }
   if (piece.point_type && !piece.point_type->empty() && piece.point_type->size() != np)
     throw Error(Status::InvalidInput, "point_type has " + std::to_string(piece.point_type->size()) +
                                           " entries for " + std::to_string(np) + " points");
@@ -132,7 +136,8 @@ std::string vtk_file(const Piece& piece, const Attributes& attributes, bool poly
   std::string out;
   // Base64 takes 4 characters per 3 bytes; XML tags take a few hundred in all.
   std::size_t bytes = 8 * piece.points.size() + np + 4 * piece.connectivity.size() + 13 * nc;
-  for (const auto* arrays : {&attributes.point_data, &attributes.cell_data})
+  for (const auto* arrays : {&attributes.point_data, &attributes.cell_data,
+                             &mesh_arrays.point_data, &mesh_arrays.cell_data})
     for (const DataArray& a : *arrays) bytes += (a.float32 ? 4 : 8) * a.values.size();
   out.reserve(bytes / 3 * 4 + 4096);
   out += "<?xml version=\"1.0\"?>\n<VTKFile type=\"";
@@ -144,6 +149,7 @@ std::string vtk_file(const Piece& piece, const Attributes& attributes, bool poly
                   : "NumberOfCells=\"";
   out += std::to_string(nc) + "\">\n      <PointData>\n";
   for (const DataArray& a : attributes.point_data) append_array(out, a);
+  for (const DataArray& a : mesh_arrays.point_data) append_array(out, a);
   if (piece.point_type && !piece.point_type->empty()) {
     std::vector<std::uint8_t> pt(np);
     std::memcpy(pt.data(), piece.point_type->data(), np);
@@ -151,6 +157,7 @@ std::string vtk_file(const Piece& piece, const Attributes& attributes, bool poly
   }
   out += "      </PointData>\n      <CellData>\n";
   for (const DataArray& a : attributes.cell_data) append_array(out, a);
+  for (const DataArray& a : mesh_arrays.cell_data) append_array(out, a);
   if (region) append_array(out, "Int32", "Region", 1, *piece.region);
   out += "      </CellData>\n      <Points>\n";
   append_array(out, "Float64", "Points", 3, piece.points);
@@ -178,14 +185,28 @@ Piece tri_piece(const TriMesh& mesh) {
   return piece;
 }
 
+// What a TriMesh carries from Triangle's input (gdr/pslg.h), as VTK arrays: the cell array
+// Region, the point arrays BoundaryMarker and PointAttributes (one component per attribute).
+Attributes tri_mesh_arrays(const TriMesh& m) {
+  Attributes a;
+  const std::size_t np = m.points.size();
+  if (!m.triangle_region.empty())
+    a.cell_data.push_back({"Region", 1, m.triangle_region});
+  if (m.point_markers.size() == np && np > 0)
+    a.point_data.push_back({"BoundaryMarker", 1, std::vector<double>(m.point_markers.begin(), m.point_markers.end())});
+  if (m.point_attribute_count > 0 && m.point_attributes.size() == np * m.point_attribute_count)
+    a.point_data.push_back({"PointAttributes", m.point_attribute_count, m.point_attributes});
+  return a;
+}
+
 }  // namespace
 
 void write_vtu(const std::string& path, const TriMesh& mesh, const Attributes& attributes) {
-  write_file_atomically(path, vtk_file(tri_piece(mesh), attributes, false));
+  write_file_atomically(path, vtk_file(tri_piece(mesh), attributes, false, tri_mesh_arrays(mesh)));
 }
 
 void write_vtp(const std::string& path, const TriMesh& mesh, const Attributes& attributes) {
-  write_file_atomically(path, vtk_file(tri_piece(mesh), attributes, true));
+  write_file_atomically(path, vtk_file(tri_piece(mesh), attributes, true, tri_mesh_arrays(mesh)));
 }
 
 void write_vtu(const std::string& path, const TetMesh& mesh, const Attributes& attributes) {

@@ -194,11 +194,17 @@ HostMesh initial_cdt(const CleanPslg& g, bool remove_exterior) {
       int s = -1;
       if (f->is_constrained(i)) {
         auto it = seg_of.find(key(a, b));
-        if (it == seg_of.end())
+        if (it == seg_of.end()) {
+          // Numbered as in the input file (an intersection point has no number there).
+          auto name = [&](int v) {
+            const int o = g.point_origin[v];
+            return o < 0 ? std::string("(an intersection point)") : std::to_string(o + g.first_index);
+          };
           throw Error(Status::SelfIntersectingInput,
-                      "a point lies on the interior of a segment near points " +
-                          std::to_string(a) + " and " + std::to_string(b) +
+                      "a point lies on the interior of a segment near points " + name(a) +
+                          " and " + name(b) +
                           " (split the segment there, or leave strict input off)");
+        }
         s = it->second;
       } else if (m.tn[3 * t + i] < 0) {
         s = static_cast<int>(m.seg.size() / 2);
@@ -207,7 +213,64 @@ HostMesh initial_cdt(const CleanPslg& g, bool remove_exterior) {
       m.ts[3 * t + i] = s;
     }
   }
+  // Regions: from each seed in turn (a later seed wins, as in Triangle), every triangle
+  // reachable without crossing a segment gets its number. Seeds outside the domain mark
+  // nothing.
+  if (!g.regions.empty()) {
+    m.tregion.assign(nt, 0);
+    std::vector<int> stack;
+    std::vector<int> visited(nt, 0);
+    for (std::size_t r = 0; r < g.regions.size(); ++r) {
+      const Point2& p = g.regions[r].point;
+      Cdt::Face_handle f = cdt.locate(K::Point_2(p.x, p.y));
+      if (f == Cdt::Face_handle() || cdt.is_infinite(f) || f->info() < 0) continue;
+      const int number = static_cast<int>(r) + 1;
+      stack.assign(1, f->info());
+      while (!stack.empty()) {
+        const int t = stack.back();
+        stack.pop_back();
+        if (visited[t] == number) continue;
+        visited[t] = number;
+        m.tregion[t] = number;
+        for (int i = 0; i < 3; ++i)
+          if (m.ts[3 * t + i] < 0 && m.tn[3 * t + i] >= 0) stack.push_back(m.tn[3 * t + i] / 3);
+      }
+    }
+  }
   return m;
+}
+
+std::vector<double> interpolate_over_cdt(const CleanPslg& g, const std::vector<double>& values,
+                                         int count, const std::vector<Point2>& queries) {
+  Cdt cdt;
+  std::vector<Cdt::Vertex_handle> vh;
+  insert_points(cdt, g.points, vh);
+  for (const auto& s : g.segments) cdt.insert_constraint(vh[s[0]], vh[s[1]]);
+  std::vector<double> out(queries.size() * count, 0.0);
+  Cdt::Face_handle hint;
+  for (std::size_t q = 0; q < queries.size(); ++q) {
+    const K::Point_2 p(queries[q].x, queries[q].y);
+    Cdt::Face_handle f = cdt.locate(p, hint);
+    if (f == Cdt::Face_handle()) continue;
+    if (cdt.is_infinite(f)) {  // a point rounded just outside the hull: its finite neighbour
+      const int i = f->index(cdt.infinite_vertex());
+      f = f->neighbor(i);
+    }
+    hint = f;
+    // Barycentric coordinates (a point rounded just outside extrapolates by as little).
+    const K::Point_2 &a = f->vertex(0)->point(), &b = f->vertex(1)->point(),
+                     &c = f->vertex(2)->point();
+    const double area = (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
+    const double w[3] = {
+        ((b.x() - p.x()) * (c.y() - p.y()) - (b.y() - p.y()) * (c.x() - p.x())) / area,
+        ((c.x() - p.x()) * (a.y() - p.y()) - (c.y() - p.y()) * (a.x() - p.x())) / area,
+        ((a.x() - p.x()) * (b.y() - p.y()) - (a.y() - p.y()) * (b.x() - p.x())) / area};
+    for (int k = 0; k < 3; ++k) {
+      const int v = f->vertex(k)->info();
+      for (int j = 0; j < count; ++j) out[q * count + j] += w[k] * values[std::size_t(v) * count + j];
+    }
+  }
+  return out;
 }
 
 }  // namespace gdr::r2d

@@ -31,6 +31,7 @@ struct Strategies {
 
 struct EngineParams {
   Criteria criteria;
+  std::vector<double> region_area2;  // Criteria::region_area2 on the host (empty: none)
   long long max_steiner = -1;  // -1: unlimited
   int max_iterations = 100000;
   Strategies strategies;
@@ -128,9 +129,20 @@ struct Engine {
   u64 compete_below = u64(1) << 32;  // the random-id threshold of this iteration's cap
   const bool trace = std::getenv("GDR_TRACE") != nullptr;  // one line per iteration on stderr
 
-  Engine(const EngineParams& p, const Callbacks& c) : params(p), cb(c) {}
+  Buf<double> region_bounds;
+  Criteria crit;  // params.criteria with its region bounds in the run's memory
+
+  Engine(const EngineParams& p, const Callbacks& c) : params(p), cb(c), crit(p.criteria) {
+    if (!p.region_area2.empty()) {
+      region_bounds.upload(p.region_area2);
+      crit.region_area2 = region_bounds.data();
+    }
+  }
+
+  bool has_regions = false;
 
   void run(const HostMesh& host, MeshResult& out) {
+    has_regions = !host.tregion.empty();
     exec::memory_counter<Space>().peak = exec::memory_counter<Space>().current;
     const std::size_t mem_base = exec::memory_counter<Space>().current;
     dm.upload(host);
@@ -176,7 +188,7 @@ struct Engine {
   // keeps a 4-bit mask in its flags and its entry count in aux; the in-place scan of the
   // counts places the entries (t*4 + slot), so collecting needs no arrays of its own.
   std::size_t collect() {
-    Ops::for_each(dm.ntri, CollectMask{dm.view(), params.criteria});
+    Ops::for_each(dm.ntri, CollectMask{dm.view(), crit});
     int* cnt = dm.aux.data();
     const std::size_t nl = static_cast<std::size_t>(Ops::exclusive_scan(cnt, cnt, dm.ntri));
     list.resize_discard(nl);
@@ -198,7 +210,7 @@ struct Engine {
                         ? u64(1) << 32
                         : static_cast<u64>(static_cast<double>(compete_cap) / nl * 4294967296.0);
     ComputeSplittingPoints step{dm.view(),
-                                params.criteria,
+                                crit,
                                 list.data(),
                                 cand_all.data(),
                                 0x9e3779b9u * static_cast<unsigned>(iter + 1),
@@ -410,7 +422,7 @@ struct Engine {
     detail::compact_triangles(dm);
     stamp("compact");
     const MeshView mv = dm.view();
-    const Criteria crit = params.criteria;
+    const Criteria criteria = crit;  // by value into the kernel below
     int* cnt = dm.aux.data();
     Ops::for_each(dm.ntri, [=] GDR_HD(long long t) {
       int n = 0;
@@ -437,8 +449,14 @@ struct Engine {
     stamp("subsegment list");
     work.to_host(out.subseg);
     stamp("subsegment copy");
+    if (!params.region_area2.empty() || has_regions) {  // before classify overwrites the flags
+      work.resize_discard(dm.ntri);
+      int* region = work.data();
+      Ops::for_each(dm.ntri, [=] GDR_HD(long long t) { region[t] = mv.tflag[t] >> kRegionShift; });
+      work.to_host(out.tregion);
+    }
     Ops::for_each(dm.ntri, [=] GDR_HD(long long t) {
-      mv.tflag[t] = classify_triangle(mv, static_cast<int>(t), crit);
+      mv.tflag[t] = classify_triangle(mv, static_cast<int>(t), criteria);
     });
     const int* cls = dm.tflag.data();
     const std::size_t nbad = exec::compact_indices<Space>(

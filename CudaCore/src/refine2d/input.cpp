@@ -270,6 +270,14 @@ void validate_refine2d_input(const Pslg& in, const Refine2dOptions& o) {
   for (std::size_t h = 0; h < in.holes.size(); ++h)
     if (!std::isfinite(in.holes[h].x) || !std::isfinite(in.holes[h].y))
       invalid("hole " + std::to_string(h + in.first_index) + " has NaN or infinite coordinates");
+  if (in.regions.size() > static_cast<std::size_t>(r2d::kMaxRegions))
+    invalid(std::to_string(in.regions.size()) + " regions: at most " + std::to_string(r2d::kMaxRegions) + " are supported");
+  for (std::size_t r = 0; r < in.regions.size(); ++r) {
+    const RegionSeed2& g = in.regions[r];
+    if (!std::isfinite(g.point.x) || !std::isfinite(g.point.y) || !std::isfinite(g.attribute) ||
+        !std::isfinite(g.max_area))
+      invalid("region " + std::to_string(r + in.first_index) + " has a NaN or infinite value");
+  }
   // Three non-collinear points are needed for any triangle.
   std::size_t i1 = 0;
   while (i1 < in.points.size() && in.points[i1].x == in.points[0].x &&
@@ -437,6 +445,7 @@ CleanPslg clean_input(const Pslg& in, const Refine2dOptions& o, const Callbacks&
   validate_refine2d_input(in, o);
   CleanPslg g;
   g.holes = in.holes;
+  g.regions = in.regions;
   g.first_index = in.first_index;
   // Duplicate points: sorted by coordinates (-0 == 0), each run of equal points maps to its
   // first in input order; the kept points stay in input order.

@@ -20,6 +20,7 @@ struct CleanPslg {
   std::vector<int> point_origin;    // input point of each point (-1: an intersection point)
   int first_index = 0;              // the input file's numbering (Pslg::first_index)
   std::vector<Point2> holes;
+  std::vector<RegionSeed2> regions;  // region r + 1 is HostMesh::tregion's number for seed r
   long long duplicates_merged = 0;
 };
 
@@ -35,6 +36,21 @@ void split_segments_at_intersections(CleanPslg& pslg);
 // Constrained Delaunay triangulation of the cleaned PSLG. Convex-hull edges that are not
 // segments become extra segments (as Triangle does), unless the exterior is removed.
 HostMesh initial_cdt(const CleanPslg& pslg, bool remove_exterior);
+
+// Values given at the points of `g` (`count` per point), interpolated linearly over its
+// constrained Delaunay triangulation at `queries` (Triangle interpolates point attributes at
+// Steiner points linearly).
+std::vector<double> interpolate_over_cdt(const CleanPslg& g, const std::vector<double>& values,
+                                         int count, const std::vector<Point2>& queries);
+
+// What Triangle's output carries besides the mesh, from the input to `out` (gdr/pslg.h):
+// boundary markers of subsegments (their segment's marker; 1 on the mesh boundary where
+// that is 0 or absent, 0 inside) and of points (their own, else that of a marked subsegment
+// they end), point attributes (interpolated at Steiner points), and with `region_attributes`
+// the attribute of each triangle's region (`tregion`: region numbers, 0 for none; null
+// without regions). `xy` are the engine's coordinates of out's points (2 per point).
+void carry_input_data(const Pslg& in, const CleanPslg& g, const double* xy, const int* tregion,
+                      bool region_attributes, TriMesh& out);
 
 // Pairs of segments that cross, touch or overlap (exact predicates), at most `limit`.
 struct SegmentConflict {

@@ -22,6 +22,9 @@ struct Criteria {
   double max_area2 = 0;       // twice the area bound (compared with |cross|); 0 = off
   double offcenter_h = 0;     // off-centres: height over the shortest edge / its length; 0 = circumcentres
   int chew = 0;               // 1: diametral lens encroachment, 0: diametral circle
+  // Per region number r > 0 (mesh2d.h, kRegionShift): twice region r's area bound at
+  // region_area2[r - 1], 0 = none; null without regional bounds. Device memory of the run.
+  const double* region_area2 = nullptr;
   int step_limit = 4096;      // point-location walk bound (deferred beyond it)
   int grid_exp = 1074;        // new coordinates are multiples of 2^-grid_exp (on_grid)
 };
@@ -97,7 +100,13 @@ GDR_HD_INLINE bool too_big(const MeshView& m, int t, const Criteria& c) {
   const double* d = pt(m, m.tv[3 * t + 2]);
   const double cross = (b[0] - a[0]) * (d[1] - a[1]) - (b[1] - a[1]) * (d[0] - a[0]);
   const double lmax = fmax(dist2(b, d), fmax(dist2(d, a), dist2(a, b)));
-  return (c.max_edge2 > 0 && lmax > c.max_edge2) || (c.max_area2 > 0 && fabs(cross) > c.max_area2);
+  double area2 = c.max_area2;
+  const int region = m.tflag[t] >> kRegionShift;
+  if (c.region_area2 && region > 0) {
+    const double r = c.region_area2[region - 1];
+    if (r > 0 && (area2 <= 0 || r < area2)) area2 = r;
+  }
+  return (c.max_edge2 > 0 && lmax > c.max_edge2) || (area2 > 0 && fabs(cross) > area2);
 }
 
 GDR_HD_INLINE int classify_triangle(const MeshView& m, int t, const Criteria& c) {
@@ -664,7 +673,7 @@ struct CreateFan {
       if (is_subseg(m, t, e)) flags |= kSubseg0 << 2;
       if (y == split_a || y == split_b) flags |= kSubseg0;
       if (x == split_a || x == split_b) flags |= kSubseg0 << 1;
-      m.tflag[nt] = flags | kFresh;
+      m.tflag[nt] = flags | kFresh | (m.tflag[t] & (kMaxRegions << kRegionShift));
       m.mark[nt] = 0;
     }
   }

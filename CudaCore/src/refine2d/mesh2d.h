@@ -27,6 +27,9 @@ enum : int {
   kCollectBits = 15 << kCollectShift,
   kSubseg0 = 1 << 9,  // edge i (bit 9+i) lies on a segment
   kFresh = 1 << 12,   // new triangle: its collect bits are not computed yet
+  kRegionShift = 13,  // bits 13-30: the triangle's region number (0: none), kept by every
+                      // new triangle of a cavity from the old one it replaces on that side
+  kMaxRegions = (1 << (31 - kRegionShift)) - 1,
 };
 
 // Per-point types (same values as gdr::PointType).
@@ -39,6 +42,7 @@ struct HostMesh {
   std::vector<int> pseg;             // per point: segment it lies on (segment points), else -1
   std::vector<int> tv, tn, ts;       // 3 per triangle
   std::vector<int> seg;              // 2 per segment: endpoint vertex ids
+  std::vector<int> tregion;          // per triangle: region number (empty: no regions)
   int input_segments = 0;            // segments [0, input_segments) come from the input
   int triangles() const { return static_cast<int>(tv.size() / 3); }
   int points() const { return static_cast<int>(ptype.size()); }
@@ -53,6 +57,7 @@ struct MeshResult {
   exec::HostVector<int> subseg;          // 3 per subsegment: its two vertices and its segment
   exec::HostVector<int> bad;             // triangles left bad: 2t, or 2t+1 where the
                                          // small-input-angle rule protects them
+  exec::HostVector<int> tregion;         // per triangle: region number (empty: no regions)
   int triangles() const { return static_cast<int>(tv.size() / 3); }
   int points() const { return static_cast<int>(ptype.size()); }
 };
@@ -104,15 +109,18 @@ struct DeviceMesh {
     tn.upload(h.tn);
     seg.upload(h.seg);
     upload_segments_at_vertices(h);
-    Buf<int> ts;
+    Buf<int> ts, tr;
     ts.upload(h.ts);
+    tr.upload(h.tregion);
     tflag.resize_discard(ntri);
     int* f = tflag.data();
     const int* s = ts.data();
+    const int* r = h.tregion.empty() ? nullptr : tr.data();
     exec::Ops<Space>::for_each(ntri, [=] GDR_HD(long long t) {
       int bits = kFresh;
       for (int i = 0; i < 3; ++i)
         if (s[3 * t + i] >= 0) bits |= kSubseg0 << i;
+      if (r) bits |= r[t] << kRegionShift;
       f[t] = bits;
     });
     mark.resize_discard(ntri);

@@ -255,6 +255,10 @@ struct PowerOfTwoScale {
     Pslg out = in;
     for (Point2& p : out.points) p = apply(p, 1);
     for (Point2& p : out.holes) p = apply(p, 1);
+    for (RegionSeed2& r : out.regions) {
+      r.point = apply(r.point, 1);
+      r.max_area = std::ldexp(r.max_area, 2 * k);
+    }
     return out;
   }
   // The kernels compare squared edge lengths and twice the area: a bound whose scaled square
@@ -327,6 +331,8 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
   // subsegments and bad triangles the same way).
   r2d::EngineParams params;
   params.criteria = crit;
+  if (options.region_areas)  // twice each region's area bound, by region number - 1
+    for (const RegionSeed2& r : pslg.regions) params.region_area2.push_back(r.max_area > 0 ? 2 * r.max_area : 0.0);
   if (options.refine) {
     const double capacity = triangle_capacity(st.backend_used);
     refuse_what_cannot_fit(estimate, capacity, mesh.triangles(), st.backend_used, user_options,
@@ -381,6 +387,7 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
 
   // Convert back: points, triangles, point types, subsegments with their input segment.
   TriMesh& out = result.mesh;
+  out.first_index = input.first_index;
   const int np = mesh_out.points(), nt = mesh_out.triangles();
   out.points.resize(np);
   out.point_type.resize(np);
@@ -401,6 +408,9 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
     out.subsegments[k] = {mesh_out.subseg[3 * k], mesh_out.subseg[3 * k + 1]};
     out.subsegment_source[k] = s < mesh.input_segments ? pslg.segment_origin[s] : -1;
   }
+  r2d::carry_input_data(input, pslg, mesh_out.xy.data(),
+                        mesh_out.tregion.empty() ? nullptr : mesh_out.tregion.data(),
+                        options.region_attributes, out);
 
   // What is left bad (classified on the device), and how much of it the small-angle rule
   // protected.

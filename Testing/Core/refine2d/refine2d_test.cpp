@@ -6,7 +6,10 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <random>
+
+#include <unistd.h>
 
 #include "gdr/io.h"
 #include "gdr/refine2d.h"
@@ -800,3 +803,159 @@ INSTANTIATE_TEST_SUITE_P(Backends, Refine2d, ::testing::Values(Backend::Cpu, Bac
                          [](const auto& info) { return std::string(gdr::to_string(info.param)); });
 
 }  // namespace
+
+// Triangle's switch string maps to the options as Triangle reads it; anything else is refused
+// by name, never ignored (issue 15).
+TEST(TriangleSwitches, MapToOptions) {
+  gdr::Refine2dOptions o;
+  gdr::TriangleSwitches t = gdr::apply_triangle_switches("-pq30a0.1", o);
+  EXPECT_EQ(o.min_angle, 30);
+  EXPECT_EQ(o.max_area, 0.1);
+  EXPECT_TRUE(o.refine);
+  EXPECT_TRUE(o.remove_exterior);  // p without c: Triangle eats the exterior
+  EXPECT_FALSE(t.zero_based || t.quiet || t.check);
+
+  o = {};
+  t = gdr::apply_triangle_switches("pcqzQCa1e-3S500", o);
+  EXPECT_EQ(o.min_angle, 20);  // q without a number
+  EXPECT_EQ(o.max_area, 1e-3);
+  EXPECT_EQ(o.max_steiner_points, 500);
+  EXPECT_FALSE(o.remove_exterior);
+  EXPECT_TRUE(t.zero_based && t.quiet && t.check);
+
+  o = {};
+  gdr::apply_triangle_switches("p", o);  // no q, no a: the CDT only, no angle bound
+  EXPECT_FALSE(o.refine);
+  EXPECT_EQ(o.min_angle, 0);
+  o = {};
+  gdr::apply_triangle_switches("pa0.5", o);  // an area bound alone
+  EXPECT_TRUE(o.refine);
+  EXPECT_EQ(o.min_angle, 0);
+
+  for (const char* bad : {"pqD", "pq30Y", "pqV", "-", "pq3.0.1", "pS"}) {
+    SCOPED_TRACE(bad);
+    gdr::Refine2dOptions r;
+    try {
+      gdr::apply_triangle_switches(bad, r);
+      ADD_FAILURE() << "accepted";
+    } catch (const gdr::Error& e) {
+      EXPECT_EQ(e.status(), gdr::Status::InvalidInput);
+      EXPECT_NE(std::string(e.what()).find(std::string("'") + bad + "'"), std::string::npos) << e.what();
+    }
+  }
+}
+
+// A mesh keeps the input's numbering: Triangle files written from a 1-based input count from
+// 1 (points and triangles), and read back the same, boundary markers included.
+TEST(Refine2dNumbering, TriangleFilesCountAsTheInputDoes) {
+  Pslg g;
+  g.points = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  g.segments = {{0, 1}, {1, 2}, {2, 3}, {3, 0}};
+  g.first_index = 1;
+  gdr::Refine2dOptions o;
+  o.backend = Backend::Cpu;
+  o.max_area = 0.1;
+  const auto r = gdr::refine_2d(g, o);
+  EXPECT_EQ(r.mesh.first_index, 1);
+  const auto dir = std::filesystem::temp_directory_path() / ("gdr_numbering_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string base = (dir / "square").string();
+  gdr::io::write_triangle(base, r.mesh);
+  std::ifstream node(base + ".node"), ele(base + ".ele");
+  std::string header, first;
+  std::getline(node, header);
+  node >> first;
+  EXPECT_EQ(first, "1");
+  std::getline(ele, header);
+  ele >> first;
+  EXPECT_EQ(first, "1");
+  const gdr::TriMesh back = gdr::io::read_triangle_mesh(base + ".node", base + ".ele");
+  EXPECT_EQ(back.first_index, 1);
+  EXPECT_EQ(back.triangles, r.mesh.triangles);
+  EXPECT_EQ(back.subsegment_markers, r.mesh.subsegment_markers);
+  EXPECT_EQ(back.point_markers, r.mesh.point_markers);
+  std::filesystem::remove_all(dir);
+}
+
+// Regions, markers and point attributes as Triangle's .poly carries them (issue 15): the
+// left half of a 2 x 1 rectangle (split by a marked segment) has an area bound and
+// attribute 10, the right half attribute 20 and no bound; markers 5 outside, 7 inside; the
+// point attribute x + 2y is linear, so its interpolation is exact at every Steiner point.
+Pslg two_regions() {
+  Pslg g;
+  g.points = {{0, 0}, {1, 0}, {2, 0}, {2, 1}, {1, 1}, {0, 1}};
+  g.segments = {{0, 1}, {1, 2}, {2, 3}, {3, 4}, {4, 5}, {5, 0}, {1, 4}};
+  g.segment_markers = {5, 5, 5, 5, 5, 5, 7};
+  g.point_markers = {5, 0, 5, 5, 0, 5};
+  g.point_attribute_count = 1;
+  for (const auto& p : g.points) g.point_attributes.push_back(p.x + 2 * p.y);
+  g.regions = {{{0.5, 0.5}, 10, 0.001}, {{1.5, 0.5}, 20, -1}};
+  return g;
+}
+
+TEST_P(Refine2d, RegionsMarkersAndPointAttributes) {
+  const Pslg g = two_regions();
+  auto o = options();
+  const auto r = mesh(g, o);
+  const auto& m = r.mesh;
+  ASSERT_EQ(m.triangle_region.size(), m.triangles.size());
+  double largest[2] = {0, 0};
+  long long count[2] = {0, 0};
+  for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+    const auto& tri = m.triangles[t];
+    const double cx = (m.points[tri[0]].x + m.points[tri[1]].x + m.points[tri[2]].x) / 3;
+    const int side = cx < 1 ? 0 : 1;
+    EXPECT_EQ(m.triangle_region[t], side ? 20 : 10);
+    const double area = gdr::triangle_area(m.points[tri[0]], m.points[tri[1]], m.points[tri[2]]);
+    largest[side] = std::max(largest[side], area);
+    ++count[side];
+  }
+  EXPECT_LE(largest[0], 0.001);  // the left region's bound holds
+  EXPECT_GT(largest[1], 0.001);  // and only there
+  EXPECT_GT(count[0], 500);
+  // Markers: the segment's on its subsegments and their points; free points 0.
+  ASSERT_EQ(m.subsegment_markers.size(), m.subsegments.size());
+  ASSERT_EQ(m.point_markers.size(), m.points.size());
+  int inner = 0;
+  for (std::size_t k = 0; k < m.subsegments.size(); ++k) {
+    const int s = m.subsegment_source[k];
+    EXPECT_EQ(m.subsegment_markers[k], s == 6 ? 7 : 5);
+    for (const int v : m.subsegments[k])
+      if (m.point_type[v] == gdr::PointType::Segment) EXPECT_EQ(m.point_markers[v], s == 6 ? 7 : 5);
+    inner += s == 6;
+  }
+  EXPECT_GT(inner, 10);  // the inner segment was split
+  // Unmarked input points take the marker of the first marked segment through them in input
+  // order, as in Triangle: point 1 that of segment 0, not the inner segment's.
+  EXPECT_EQ(m.point_markers[1], 5);
+  EXPECT_EQ(m.point_markers[0], 5);
+  for (std::size_t v = 0; v < m.points.size(); ++v)
+    if (m.point_type[v] == gdr::PointType::Free) EXPECT_EQ(m.point_markers[v], 0);
+  ASSERT_EQ(m.point_attribute_count, 1);
+  ASSERT_EQ(m.point_attributes.size(), m.points.size());
+  for (std::size_t v = 0; v < m.points.size(); ++v)
+    EXPECT_NEAR(m.point_attributes[v], m.points[v].x + 2 * m.points[v].y, 1e-12) << v;
+
+  // Without region areas (Triangle without -a) the left region is not bounded; without
+  // region attributes there is no Region; without markers in the input, boundary
+  // subsegments get 1 and inner ones 0.
+  Pslg plain = g;
+  plain.segment_markers.clear();
+  plain.point_markers.clear();
+  o.region_areas = false;
+  o.region_attributes = false;
+  const auto q = mesh(plain, o);
+  EXPECT_TRUE(q.mesh.triangle_region.empty());
+  EXPECT_LT(q.mesh.triangles.size(), m.triangles.size() / 10);
+  for (std::size_t k = 0; k < q.mesh.subsegments.size(); ++k)
+    EXPECT_EQ(q.mesh.subsegment_markers[k], q.mesh.subsegment_source[k] == 6 ? 0 : 1);
+}
+
+TEST(TriangleSwitches, RegionSwitches) {
+  gdr::Refine2dOptions o;
+  gdr::apply_triangle_switches("pq", o);  // Triangle uses regions only when asked
+  EXPECT_FALSE(o.region_areas || o.region_attributes);
+  gdr::apply_triangle_switches("pqaA", o);
+  EXPECT_TRUE(o.region_areas && o.region_attributes && o.refine);
+  EXPECT_EQ(o.max_area, 0);
+}

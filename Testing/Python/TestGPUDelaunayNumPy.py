@@ -1,0 +1,122 @@
+"""The NumPy API: gpudelaunay.refine_2d with arrays in and out, Triangle's switches and
+dict input, warnings and errors as Python exceptions carrying the core's messages.
+
+Run with /usr/bin/python3 and PYTHONPATH=<build>/python:
+    TestGPUDelaunayNumPy.py
+"""
+import sys
+import warnings
+
+import numpy as np
+
+import gpudelaunay
+
+
+def check(condition, message):
+    if not condition:
+        print("FAILED:", message)
+        sys.exit(1)
+
+
+def angles_and_areas(points, triangles):
+    """Smallest angle (degrees) and area of each triangle, from the arrays alone."""
+    p = points[triangles]  # (t, 3, 2)
+    e = [p[:, (i + 2) % 3] - p[:, (i + 1) % 3] for i in range(3)]  # edge opposite corner i
+    length = [np.linalg.norm(v, axis=1) for v in e]
+    cross = e[0][:, 0] * e[1][:, 1] - e[0][:, 1] * e[1][:, 0]
+    area = 0.5 * cross
+    angles = []
+    for i in range(3):
+        a, b = length[(i + 1) % 3], length[(i + 2) % 3]
+        angles.append(np.degrees(np.arcsin(np.clip(2 * np.abs(area) / (a * b), 0, 1))))
+    smallest = np.min(angles, axis=0)  # the smallest angle is below 60: arcsin is exact
+    return smallest, area
+
+
+def square_with_hole():
+    outer = [[0, 0], [4, 0], [4, 4], [0, 4]]
+    inner = [[1, 1], [2, 1], [2, 2], [1, 2]]
+    points = np.array(outer + inner, dtype=float)
+    segments = np.array([[0, 1], [1, 2], [2, 3], [3, 0], [4, 5], [5, 6], [6, 7], [7, 4]])
+    return points, segments, np.array([[1.5, 1.5]])
+
+
+def test_arrays_in_and_out():
+    points, segments, holes = square_with_hole()
+    mesh = gpudelaunay.refine_2d(points, segments, holes, min_angle=28, max_area=0.05,
+                                 backend="cpu")
+    check(isinstance(mesh, dict), "the result is a dict")
+    check(mesh.points is mesh["points"], "keys are attributes")
+    check(mesh.points.shape[1] == 2 and mesh.points.dtype == np.float64, "points (m, 2)")
+    check(mesh.triangles.shape[1] == 3 and mesh.triangles.dtype == np.int64, "triangles (t, 3)")
+    t = len(mesh.triangles)
+    check(t > 100, "refined: %d triangles" % t)
+    for key in ("min_angle", "max_angle", "radius_edge_ratio", "area", "is_bad"):
+        check(key in mesh and mesh[key].shape == (t,), "cell array " + key)
+    check(mesh.point_type.shape == (len(mesh.points),), "point_type per point")
+    check(np.all(mesh.points[:8] == points), "input points first, in input order")
+    smallest, area = angles_and_areas(mesh.points, mesh.triangles)
+    check(np.all(area > 0), "counter-clockwise triangles")
+    check(smallest.min() >= 28 - 1e-9, "minimum angle %.3f >= 28" % smallest.min())
+    check(area.max() <= 0.05 * (1 + 1e-12), "maximum area %.4f <= 0.05" % area.max())
+    check(abs(area.sum() - 15.0) < 1e-9, "area 16 - 1 (hole emptied): %.12f" % area.sum())
+    check(np.allclose(mesh.min_angle, smallest, atol=1e-6), "min_angle matches the arrays")
+    check(not mesh.is_bad.any(), "no bad triangles")
+    check(mesh.stats["Backend"] == "cpu" and mesh.stats["SteinerPoints"] > 0, "stats")
+
+
+def test_triangle_style():
+    # The `triangle` package's dict and switches: an L-shape, p removes the exterior.
+    shape = {"vertices": [[0, 0], [2, 0], [2, 1], [1, 1], [1, 2], [0, 2]],
+             "segments": [[i, (i + 1) % 6] for i in range(6)]}
+    mesh = gpudelaunay.refine_2d(shape, switches="pq32a0.02", backend="cpu")
+    smallest, area = angles_and_areas(mesh.points, mesh.triangles)
+    check(abs(area.sum() - 3.0) < 1e-9, "the L-shape's area: %.12f" % area.sum())
+    check(smallest.min() >= 32 - 1e-9, "q32: %.3f" % smallest.min())
+    check(area.max() <= 0.02 * (1 + 1e-12), "a0.02: %.4f" % area.max())
+    # No q, no a: the constrained Delaunay triangulation only.
+    cdt = gpudelaunay.refine_2d(shape, switches="p", backend="cpu")
+    check(len(cdt.points) == 6 and len(cdt.triangles) == 4, "p alone: the CDT")
+
+
+def test_warnings_and_errors():
+    cross = np.array([[0, 0], [2, 2], [0, 2], [2, 0]], dtype=float)
+    lines = [[0, 1], [2, 3]]
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        mesh = gpudelaunay.refine_2d(cross, lines, backend="cpu")
+    check(any(issubclass(w.category, gpudelaunay.MeshingWarning) and
+              "split 2 segment(s) into 4 pieces" in str(w.message) for w in caught),
+          "crossing segments split with a warning: %s" % [str(w.message) for w in caught])
+    check(len(mesh.points) >= 5, "the crossing point is a mesh point")
+
+    try:
+        gpudelaunay.refine_2d(cross, lines, strict=True, backend="cpu")
+        check(False, "strict accepted crossing segments")
+    except gpudelaunay.MeshingError as e:
+        check(e.status == "SelfIntersectingInput", "status: %r" % e.status)
+        check("segment 0 and segment 1 cross" in e.message, "message: %s" % e.message)
+
+    try:
+        gpudelaunay.refine_2d(cross, lines, switches="pqD", backend="cpu")
+        check(False, "switch D accepted")
+    except gpudelaunay.MeshingError as e:
+        check(e.status == "InvalidInput" and "'D'" in e.message, "switches: %s" % e)
+
+    for bad in (dict(points=np.zeros((3, 4))), dict(points=cross, segments=[[0, 9]])):
+        try:
+            gpudelaunay.refine_2d(**bad)
+            check(False, "accepted %r" % bad)
+        except ValueError:
+            pass
+
+
+def main():
+    test_arrays_in_and_out()
+    test_triangle_style()
+    test_warnings_and_errors()
+    print("NumPy API: all checks passed")
+
+
+if __name__ == "__main__":
+    main()
