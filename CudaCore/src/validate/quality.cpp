@@ -1,5 +1,6 @@
 // Element quality measures and their statistics (angles, radius-edge ratio, histograms).
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <limits>
 
@@ -69,7 +70,7 @@ QualityStats run(std::size_t points, const std::vector<Cell>& cells, std::size_t
     (dihedral ? q.min_dihedral_deg : q.min_angle_deg) = total.min_a;
     (dihedral ? q.max_dihedral_deg : q.max_angle_deg) = total.max_a;
     q.max_radius_edge = total.max_re;
-    q.mean_radius_edge = total.sum_re / static_cast<double>(total.elements);
+    q.mean_radius_edge = total.sum_re;  // a sum of re / elements: no overflow
   }
   q.bad_elements = total.bad;
   q.total_measure = total.measure;
@@ -146,28 +147,47 @@ void tet_dihedral_angles(const Point3& a, const Point3& b, const Point3& c, cons
   }
 }
 
+// Statistics stay finite and agree with the mesher's at any scale: angles and radius-edge
+// ratios on each triangle scaled by a power of two into [-2, 2] (exact, nothing overflows),
+// areas summed at the mesh's own power-of-two scale and scaled back once. A flat triangle
+// counts with the largest double as its radius-edge ratio.
 QualityStats triangle_quality(const TriMesh& mesh, double min_angle_deg) {
   const auto& P = mesh.points;
-  return run(P.size(), mesh.triangles, 60,
+  const auto exponent = [](double m) { return m > 0 && std::isfinite(m) ? -std::ilogb(m) : 0; };
+  double largest = 0;
+  for (const Point2& p : P) largest = std::max({largest, std::fabs(p.x), std::fabs(p.y)});
+  const int mesh_k = exponent(largest);
+  const double share = 1.0 / std::max<std::size_t>(1, mesh.triangles.size());
+  const auto scaled = [](const Point2& p, int k) { return Point2{std::ldexp(p.x, k), std::ldexp(p.y, k)}; };
+  QualityStats q = run(P.size(), mesh.triangles, 60,
              [&](const std::array<int, 3>& t, Accumulator& acc) {
+               const int k = exponent(std::max({std::fabs(P[t[0]].x), std::fabs(P[t[0]].y),
+                                                std::fabs(P[t[1]].x), std::fabs(P[t[1]].y),
+                                                std::fabs(P[t[2]].x), std::fabs(P[t[2]].y)}));
+               const Point2 a = scaled(P[t[0]], k), b = scaled(P[t[1]], k), c = scaled(P[t[2]], k);
                double lo, hi;
-               triangle_angles(P[t[0]], P[t[1]], P[t[2]], lo, hi);
-               const double re = triangle_radius_edge(P[t[0]], P[t[1]], P[t[2]]);
-               const double area = std::fabs(triangle_area(P[t[0]], P[t[1]], P[t[2]]));
+               triangle_angles(a, b, c, lo, hi);
+               const double re = std::min(triangle_radius_edge(a, b, c), DBL_MAX);
+               const double area = std::fabs(triangle_area(scaled(P[t[0]], mesh_k),
+                                                           scaled(P[t[1]], mesh_k),
+                                                           scaled(P[t[2]], mesh_k)));
                ++acc.elements;
                acc.min_a = std::min(acc.min_a, lo);
                acc.max_a = std::max(acc.max_a, hi);
                acc.max_re = std::max(acc.max_re, re);
-               acc.sum_re += re;
+               acc.sum_re += re * share;
                acc.measure += area;
                if (min_angle_deg > 0 && lo < min_angle_deg) ++acc.bad, acc.bad_measure += area;
                acc.bin(lo);
              },
              false);
+  q.total_measure = std::ldexp(q.total_measure, -2 * mesh_k);
+  return q;
 }
 
 QualityStats tet_quality(const TetMesh& mesh, double max_radius_edge) {
   const auto& P = mesh.points;
+  const double share = 1.0 / std::max<std::size_t>(1, mesh.tets.size());
   return run(P.size(), mesh.tets, 180,
              [&](const std::array<int, 4>& t, Accumulator& acc) {
                double angles[6];
@@ -181,7 +201,7 @@ QualityStats tet_quality(const TetMesh& mesh, double max_radius_edge) {
                  acc.bin(a);
                }
                acc.max_re = std::max(acc.max_re, re);
-               acc.sum_re += re;
+               acc.sum_re += re * share;
                acc.measure += volume;
                if (max_radius_edge > 0 && re > max_radius_edge) ++acc.bad, acc.bad_measure += volume;
              },

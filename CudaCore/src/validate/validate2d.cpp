@@ -1,8 +1,10 @@
 // 2D validator: orientation, manifold edges, conformity to the PSLG, constrained Delaunay.
 #include <algorithm>
+#include <cmath>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include "gdr/validate.h"
-#include "predicates/predicates.h"
 #include "validate/conformity.h"
 #include "validate/incidence.h"
 
@@ -26,6 +28,62 @@ std::string tri_text(const TriMesh& m, std::size_t t) {
 
 enum EdgeStatus : std::uint8_t { kEdgeOk = 0, kEdgeNonmanifold, kEdgeOverlap, kEdgeNonDelaunay };
 
+// The orientation and incircle tests are CGAL's filtered exact predicates, not the mesher's
+// own: they are exact for any finite doubles (their filters fall back to exact arithmetic
+// where products would overflow or underflow), so the check does not share the mesher's
+// assumptions about the coordinate range.
+using Cgal = CGAL::Exact_predicates_inexact_constructions_kernel;
+Cgal::Point_2 cgal(const Point2& p) { return {p.x, p.y}; }
+
+// Each input segment must be one chain of subsegments from its first to its last vertex:
+// the subsegments the mesher says come from it (subsegment_source), each of its interior
+// vertices on two of them, its ends on one, and in order along the segment (the coordinate
+// in which the segment is longer never goes back; no arithmetic, so an edge one ulp long or a
+// neighbouring segment 1e-15 rad away cannot confuse it). Vertices must also lie on the
+// segment up to rounding: within `tolerance` of its length, or a few ulps of the largest
+// coordinate magnitude (intersection points are rounded and merged within 2^-40 of the extent).
+bool follow_sourced_chain(const std::vector<Point2>& P, const std::vector<std::array<int, 2>>& chain,
+                          int a, int b, double tolerance, double extent) {
+  if (chain.empty()) return false;
+  std::vector<int> verts;
+  for (const auto& e : chain) verts.push_back(e[0]), verts.push_back(e[1]);
+  std::sort(verts.begin(), verts.end());
+  verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
+  if (verts.size() != chain.size() + 1 || !std::binary_search(verts.begin(), verts.end(), a) ||
+      !std::binary_search(verts.begin(), verts.end(), b))
+    return false;  // a path from a to b has one vertex more than edges
+  std::vector<std::vector<int>> next(verts.size());
+  const auto index = [&](int v) {
+    return static_cast<int>(std::lower_bound(verts.begin(), verts.end(), v) - verts.begin());
+  };
+  for (const auto& e : chain) {
+    if (e[0] == e[1]) return false;
+    next[index(e[0])].push_back(e[1]);
+    next[index(e[1])].push_back(e[0]);
+  }
+  const Point2 &pa = P[a], &pb = P[b];
+  const bool along_x = std::fabs(pb.x - pa.x) >= std::fabs(pb.y - pa.y);
+  const double dir = along_x ? pb.x - pa.x : pb.y - pa.y;
+  const auto key = [&](int v) { return (along_x ? P[v].x : P[v].y) * (dir > 0 ? 1 : -1); };
+  // Distances on coordinates scaled by a power of two (exact) so that nothing overflows.
+  const int k = -std::ilogb(std::max({std::fabs(pa.x), std::fabs(pa.y), std::fabs(pb.x), std::fabs(pb.y)}));
+  const double dx = std::ldexp(pb.x, k) - std::ldexp(pa.x, k), dy = std::ldexp(pb.y, k) - std::ldexp(pa.y, k);
+  const double len = std::hypot(dx, dy), slack = tolerance * len + std::ldexp(extent, k - 38);
+  int prev = -1, cur = a;
+  for (std::size_t steps = 0; cur != b; ++steps) {
+    const auto& nb = next[index(cur)];
+    if (steps > chain.size() || nb.size() != (cur == a ? 1u : 2u)) return false;
+    const int to = nb[0] != prev ? nb[0] : nb[1];
+    if (key(to) < key(cur)) return false;
+    const double rx = std::ldexp(P[to].x, k) - std::ldexp(pa.x, k),
+                 ry = std::ldexp(P[to].y, k) - std::ldexp(pa.y, k);
+    if (to != b && !(std::fabs(rx * dy - ry * dx) <= slack * len)) return false;
+    prev = cur;
+    cur = to;
+  }
+  return next[index(b)].size() == 1;
+}
+
 }  // namespace
 
 ValidationReport validate_trimesh(const TriMesh& mesh, const Pslg* input,
@@ -36,7 +94,6 @@ ValidationReport validate_trimesh(const TriMesh& mesh, const Pslg* input,
   const auto& T = mesh.triangles;
   const std::size_t nv = P.size();
   const std::int64_t nt = static_cast<std::int64_t>(T.size());
-  auto xy = [&](int v) { return &P[v].x; };  // Point2 is two adjacent doubles
 
   // Per triangle: 0 ok, 1 bad index, 2 not counter-clockwise.
   std::vector<std::uint8_t> tri_status(T.size(), 0);
@@ -45,7 +102,8 @@ ValidationReport validate_trimesh(const TriMesh& mesh, const Pslg* input,
     bool in_range = true;
     for (int v : T[t]) in_range = in_range && v >= 0 && static_cast<std::size_t>(v) < nv;
     if (!in_range) tri_status[t] = 1;
-    else if (!(pred::orient2d(xy(T[t][0]), xy(T[t][1]), xy(T[t][2])) > 0)) tri_status[t] = 2;
+    else if (CGAL::orientation(cgal(P[T[t][0]]), cgal(P[T[t][1]]), cgal(P[T[t][2]])) != CGAL::LEFT_TURN)
+      tri_status[t] = 2;
   }
   for (std::size_t t = 0; t < T.size(); ++t) {
     if (tri_status[t] == 1) {
@@ -112,7 +170,8 @@ ValidationReport validate_trimesh(const TriMesh& mesh, const Pslg* input,
     }
     if (!delaunay || std::binary_search(constrained.begin(), constrained.end(), edge_key(a, first->b)))
       return;
-    if (pred::incircle(xy(T[t1][0]), xy(T[t1][1]), xy(T[t1][2]), xy(T[t2][k2])) > 0)
+    if (CGAL::side_of_oriented_circle(cgal(P[T[t1][0]]), cgal(P[T[t1][1]]), cgal(P[T[t1][2]]),
+                                      cgal(P[T[t2][k2]])) == CGAL::ON_POSITIVE_SIDE)
       edge_status[item] = kEdgeNonDelaunay;
   });
   for (std::size_t i = 0; i < edge_status.size(); ++i) {
@@ -144,6 +203,22 @@ ValidationReport validate_trimesh(const TriMesh& mesh, const Pslg* input,
     }
     const validate::SubsegmentGraph graph(nv, mesh.subsegments);
     const auto& S = input->segments;
+    // The mesher says which input segment each subsegment comes from: follow those chains.
+    // Without that (a mesh read from a file), walk the subsegments geometrically.
+    const bool sourced = mesh.subsegment_source.size() == mesh.subsegments.size() &&
+                         !mesh.subsegments.empty();
+    std::vector<std::vector<std::array<int, 2>>> chains(sourced ? S.size() : 0);
+    double extent = 0;
+    if (sourced) {
+      for (std::size_t k = 0; k < mesh.subsegments.size(); ++k) {
+        const int s = mesh.subsegment_source[k];
+        const auto& e = mesh.subsegments[k];
+        if (s >= 0 && static_cast<std::size_t>(s) < S.size() && e[0] >= 0 && e[1] >= 0 &&
+            static_cast<std::size_t>(e[0]) < nv && static_cast<std::size_t>(e[1]) < nv)
+          chains[s].push_back(e);
+      }
+      for (const Point2& p : P) extent = std::max({extent, std::fabs(p.x), std::fabs(p.y)});
+    }
     std::vector<std::uint8_t> seg_ok(S.size(), 1);
     const std::int64_t ns = static_cast<std::int64_t>(S.size());
     const std::int64_t ni = static_cast<std::int64_t>(input->points.size());
@@ -156,7 +231,10 @@ ValidationReport validate_trimesh(const TriMesh& mesh, const Pslg* input,
       }
       const int a = found[representative[ia]], b = found[representative[ib]];
       if (a < 0 || b < 0) seg_ok[s] = 0;
-      else if (a != b) seg_ok[s] = validate::follow_segment(P, graph, a, b, options.segment_tolerance);
+      // (A segment given twice, or overlapping another, is sourced to one of them only.)
+      else if (a != b)
+        seg_ok[s] = (sourced && follow_sourced_chain(P, chains[s], a, b, options.segment_tolerance, extent)) ||
+                    validate::follow_segment(P, graph, a, b, options.segment_tolerance);
     }
     for (std::size_t s = 0; s < S.size(); ++s) {
       if (seg_ok[s]) continue;
