@@ -24,6 +24,12 @@ vtk_module_build(
   ARCHIVE_DESTINATION "${CMAKE_INSTALL_LIBDIR}"
   CMAKE_DESTINATION   "${CMAKE_INSTALL_LIBDIR}/cmake/GPUDelaunay")
 
+# gdr 2d reads .vtp/.vtk polydata through the filters' converter (apps/gdr/vtk_input.cpp),
+# so that the CLI and the filter take the same lines and polygons as segments.
+target_compile_definitions(gdr PRIVATE GDR_CLI_HAVE_VTK=1)
+target_include_directories(gdr PRIVATE "${PROJECT_SOURCE_DIR}/Filters")
+target_link_libraries(gdr PRIVATE GPUDelaunay::GPUDelaunayFilters VTK::IOXML VTK::IOLegacy)
+
 # --- Python package `gpudelaunay` ----------------------------------------------
 # Build tree: <build>/python/gpudelaunay; set PYTHONPATH=<build>/python.
 find_package(Python3 REQUIRED COMPONENTS Interpreter Development.Module)

@@ -20,6 +20,7 @@
 #include "mesh_attributes.h"
 #include "progress_bar.h"
 #include "table.h"
+#include "vtk_input.h"
 
 namespace gdr::cli {
 
@@ -32,13 +33,14 @@ Usage:
   gdr 2d -pq30a0.1 INPUT.poly -o OUTPUT [options]     (Triangle's switches)
 
 INPUT is a planar straight-line graph in Triangle's .poly format (points, segments, optional
-hole seeds and regions), or a .node file (points only). Holes are emptied from their seeds;
+hole seeds and regions), a .node file (points only), or, in builds with VTK, VTK polydata
+(.vtp, legacy .vtk) whose lines and polygon edges are the segments. Holes are emptied from their seeds;
 the rest of the convex hull is meshed too unless --remove-exterior is given. A region's
 maximum area bounds the triangles of its region, and its attribute goes to them (cell
 array Region); boundary markers and point attributes are carried to the output, as
 Triangle does (point attributes interpolated linearly at new points). OUTPUT is written by
 its extension:
-  .vtu / .vtp   VTK XML (ParaView) with cell arrays MinAngle, MaxAngle, RadiusEdgeRatio,
+  .vtu / .vtp   VTK XML (ParaView; .vtk: legacy VTK) with cell arrays MinAngle, MaxAngle, RadiusEdgeRatio,
                 Area, IsBad (and Region), point arrays PointType (0 input, 1 on a segment,
                 2 free), BoundaryMarker (and PointAttributes)
   .node / .ele  Triangle's format: -o BASE.node (or BASE.ele) writes three files,
@@ -114,7 +116,7 @@ struct Args2d {
 
 bool output_extension_supported(const std::string& path) {
   const std::string ext = std::filesystem::path(path).extension().string();
-  return ext == ".vtu" || ext == ".vtp" || ext == ".node" || ext == ".ele";
+  return ext == ".vtu" || ext == ".vtp" || ext == ".vtk" || ext == ".node" || ext == ".ele";
 }
 
 Args2d parse_2d(const std::vector<std::string>& args) {
@@ -184,7 +186,7 @@ Args2d parse_2d(const std::vector<std::string>& args) {
   a.input = single_input(cmd, positional);
   if (!a.output.empty() && !output_extension_supported(a.output))
     throw UsageError(cmd, "cannot tell the output format of '" + a.output +
-                              "': use .vtu, .vtp, .node or .ele");
+                              "': use .vtu, .vtp, .vtk, .node or .ele");
   return a;
 }
 
@@ -361,7 +363,13 @@ void refuse_overwrites(const Args2d& a) {
   refuse_overwrites("2d", a.input, io::poly_input_files(a.input), outputs);
 }
 
-Pslg read_input(const std::string& path) {
+Pslg read_input(const std::string& path, const Callbacks& callbacks) {
+  if (is_vtk_polydata(path)) {
+    std::string warning;
+    Pslg pslg = read_vtk_pslg(path, warning);
+    if (!warning.empty() && callbacks.warning) callbacks.warning(warning);
+    return pslg;
+  }
   if (!std::filesystem::exists(path)) throw Error(Status::IoError, path + ": no such file");
   if (io::detect_input_kind(path) != io::InputKind::Pslg2d)
     throw Error(Status::InvalidInput,
@@ -374,17 +382,17 @@ int mesh_2d(const Args2d& a, bool& written) {
   CliTimes t;
   ProgressBar bar(!a.quiet);
 
-  bar.update(-1, "reading " + a.input);
-  auto t0 = std::chrono::steady_clock::now();
-  const Pslg input = read_input(a.input);
-  t.read = since(t0);
-  stop_if_interrupted();
-
   Callbacks callbacks;
   callbacks.progress = [&bar](double f, const std::string& phase) { bar.update(f, phase); };
   if (!a.quiet)
     callbacks.warning = [&bar](const std::string& m) { bar.message("gdr: warning: " + m); };
   callbacks.abort = [] { return InterruptHandler::received() != 0; };
+
+  bar.update(-1, "reading " + a.input);
+  auto t0 = std::chrono::steady_clock::now();
+  const Pslg input = read_input(a.input, callbacks);
+  t.read = since(t0);
+  stop_if_interrupted();
   const Refine2dResult result = refine_2d(input, a.options, callbacks);
   stop_if_interrupted();
 

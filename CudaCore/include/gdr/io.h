@@ -76,6 +76,9 @@ struct Attributes {
 // arrays BoundaryMarker (point_markers) and PointAttributes (point_attributes).
 void write_vtu(const std::string& path, const TriMesh& mesh, const Attributes& attributes = {});
 void write_vtp(const std::string& path, const TriMesh& mesh, const Attributes& attributes = {});
+// Legacy VTK (.vtk, binary polydata), for tools that read only that: the same arrays as
+// write_vtp, as FIELD arrays of doubles.
+void write_vtk_legacy(const std::string& path, const TriMesh& mesh, const Attributes& attributes = {});
 // A TetMesh's .vtu also carries the point array PointType and, when the mesh has regions,
 // the cell array Region (its tet_region).
 void write_vtu(const std::string& path, const TetMesh& mesh, const Attributes& attributes = {});
@@ -93,7 +96,7 @@ void write_tetgen(const std::string& base, const TetMesh& mesh);
 // subfaces) with the input facet id + 1 (0 where unknown).
 void write_medit(const std::string& path, const TetMesh& mesh);
 
-// Writes by the extension of `path`: .vtu, .vtp, .node or .ele (Triangle files beside it).
+// Writes by the extension of `path`: .vtu, .vtp, .vtk, .node or .ele (Triangle files beside it).
 void write_mesh(const std::string& path, const TriMesh& mesh, const Attributes& attributes = {});
 // A TetMesh by .vtu, .mesh (Medit), or .node, .ele or .face (TetGen's three files).
 void write_mesh(const std::string& path, const TetMesh& mesh, const Attributes& attributes = {});

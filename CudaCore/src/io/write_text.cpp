@@ -228,9 +228,10 @@ void write_mesh(const std::string& path, const TriMesh& mesh, const Attributes& 
   const std::string ext = extension_of(path);
   if (ext == ".vtu") return write_vtu(path, mesh, attributes);
   if (ext == ".vtp") return write_vtp(path, mesh, attributes);
+  if (ext == ".vtk") return write_vtk_legacy(path, mesh, attributes);
   if (ext == ".node" || ext == ".ele") return write_triangle(strip_extension(path), mesh);
   throw Error(Status::IoError, path + ": unsupported output format '" + ext +
-                                   "' for a triangle mesh (expected .vtu, .vtp, .node or .ele)");
+                                   "' for a triangle mesh (expected .vtu, .vtp, .vtk, .node or .ele)");
 }
 
 std::vector<std::string> tetmesh_output_files(const std::string& path) {

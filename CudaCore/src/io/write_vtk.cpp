@@ -199,7 +199,64 @@ Attributes tri_mesh_arrays(const TriMesh& m) {
   return a;
 }
 
+// Legacy VTK binary data is big-endian.
+template <class T>
+void append_big_endian(std::string& out, const T* values, std::size_t n) {
+  const std::size_t at = out.size();
+  out.resize(at + n * sizeof(T));
+  char* dst = &out[at];
+  for (std::size_t i = 0; i < n; ++i) {
+    char bytes[sizeof(T)];
+    std::memcpy(bytes, &values[i], sizeof(T));
+    for (std::size_t b = 0; b < sizeof(T); ++b) dst[i * sizeof(T) + b] = bytes[sizeof(T) - 1 - b];
+  }
+  out += '\n';
+}
+
+// Arrays of one kind (POINT_DATA or CELL_DATA) as one legacy FIELD (any number of
+// components, doubles).
+void append_legacy_field(std::string& out, const char* kind, std::size_t count,
+                         const std::vector<const DataArray*>& arrays) {
+  if (arrays.empty()) return;
+  out += std::string(kind) + " " + std::to_string(count) + "\nFIELD FieldData " +
+         std::to_string(arrays.size()) + "\n";
+  for (const DataArray* a : arrays) {
+    out += a->name + " " + std::to_string(a->components) + " " + std::to_string(count) + " double\n";
+    append_big_endian(out, a->values.data(), a->values.size());
+  }
+}
+
 }  // namespace
+
+void write_vtk_legacy(const std::string& path, const TriMesh& mesh, const Attributes& attributes) {
+  const std::size_t np = mesh.points.size(), nt = mesh.triangles.size();
+  const Attributes own = tri_mesh_arrays(mesh);
+  DataArray type{"PointType", 1, std::vector<double>(mesh.point_type.size())};
+  for (std::size_t i = 0; i < mesh.point_type.size(); ++i)
+    type.values[i] = static_cast<double>(mesh.point_type[i]);
+  std::vector<const DataArray*> point_arrays, cell_arrays;
+  for (const Attributes* a : {&attributes, &own}) {
+    check_arrays(a->point_data, np, "point");
+    check_arrays(a->cell_data, nt, "cell");
+    for (const DataArray& d : a->point_data) point_arrays.push_back(&d);
+    for (const DataArray& d : a->cell_data) cell_arrays.push_back(&d);
+  }
+  if (type.values.size() == np && np > 0) point_arrays.push_back(&type);
+  std::string out = "# vtk DataFile Version 4.2\ngdr triangle mesh\nBINARY\nDATASET POLYDATA\nPOINTS " +
+                    std::to_string(np) + " double\n";
+  std::vector<double> xyz;
+  xyz.reserve(3 * np);
+  for (const Point2& p : mesh.points) xyz.insert(xyz.end(), {p.x, p.y, 0.0});
+  append_big_endian(out, xyz.data(), xyz.size());
+  out += "POLYGONS " + std::to_string(nt) + " " + std::to_string(4 * nt) + "\n";
+  std::vector<std::int32_t> cells;
+  cells.reserve(4 * nt);
+  for (const auto& t : mesh.triangles) cells.insert(cells.end(), {3, t[0], t[1], t[2]});
+  append_big_endian(out, cells.data(), cells.size());
+  append_legacy_field(out, "CELL_DATA", nt, cell_arrays);
+  append_legacy_field(out, "POINT_DATA", np, point_arrays);
+  write_file_atomically(path, out);
+}
 
 void write_vtu(const std::string& path, const TriMesh& mesh, const Attributes& attributes) {
   write_file_atomically(path, vtk_file(tri_piece(mesh), attributes, false, tri_mesh_arrays(mesh)));
@@ -220,6 +277,16 @@ void write_vtu(const std::string& path, const TetMesh& mesh, const Attributes& a
   piece.point_type = &mesh.point_type;
   piece.region = &mesh.tet_region;
   write_file_atomically(path, vtk_file(piece, attributes, false));
+}
+
+void write_surface_vtp(const std::string& path, const TetMesh& mesh, const Attributes& attributes) {
+  Piece piece;
+  piece.points.reserve(3 * mesh.points.size());
+  for (const Point3& p : mesh.points) piece.points.insert(piece.points.end(), {p.x, p.y, p.z});
+  fill_cells(piece, mesh.subfaces, {0, 1, 2});
+  piece.cell_type = kVtkTriangle;
+  piece.point_type = &mesh.point_type;
+  write_file_atomically(path, vtk_file(piece, attributes, true));
 }
 
 }  // namespace gdr::io

@@ -595,6 +595,21 @@ TEST(Write, VtkXmlReadsBackInVtk) {
   check_with_vtk(kOut + "/pair.vtu", 5, 2, 10, "Volume PointType");
 }
 
+// Legacy .vtk (issue 15), read back by VTK's own reader with every array: the caller's, the
+// point type, and what the mesh carries from Triangle's input (markers, attributes, regions).
+TEST(Write, LegacyVtkIsReadByVtk) {
+  TriMesh m = strip(7);
+  m.point_markers.assign(7, 1);
+  m.point_attribute_count = 2;
+  m.point_attributes.assign(14, 0.5);
+  m.triangle_region.assign(5, 3.0);
+  io::Attributes attr;
+  attr.cell_data.push_back({"MinAngle", 1, std::vector<double>(5, 30.0)});
+  io::write_mesh(kOut + "/strip.vtk", m, attr);
+  check_with_vtk(kOut + "/strip.vtk", 7, 5, 5,
+                 "MinAngle PointType BoundaryMarker PointAttributes Region");
+}
+
 TEST(Write, RefusesUnknownExtensionsAndWrongArraySizes) {
   const TriMesh m = strip(5);
   EXPECT_NE(io_error([&] { io::write_mesh(kOut + "/strip.obj", m); }).find("unsupported"),

@@ -1,4 +1,4 @@
-"""Reads a .vtu/.vtp with VTK and checks its sizes and arrays, and that tetrahedra have a
+"""Reads a .vtu/.vtp/.vtk (legacy polydata) with VTK and checks its sizes and arrays, and that tetrahedra have a
 positive volume in VTK's convention.
 
 usage: read_vtk.py FILE POINTS CELLS CELL_TYPE [ARRAY ...]
@@ -7,12 +7,18 @@ Exit 0 on success, 1 on a mismatch, 77 when VTK is not importable.
 import sys
 
 try:
+    from vtkmodules.vtkIOLegacy import vtkPolyDataReader
     from vtkmodules.vtkIOXML import vtkXMLPolyDataReader, vtkXMLUnstructuredGridReader
 except ImportError:
     sys.exit(77)
 
 path, points, cells, cell_type = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), int(sys.argv[4])
-reader = vtkXMLPolyDataReader() if path.endswith(".vtp") else vtkXMLUnstructuredGridReader()
+if path.endswith(".vtk"):
+    reader = vtkPolyDataReader()
+elif path.endswith(".vtp"):
+    reader = vtkXMLPolyDataReader()
+else:
+    reader = vtkXMLUnstructuredGridReader()
 reader.SetFileName(path)
 reader.Update()
 data = reader.GetOutput()
