@@ -13,6 +13,7 @@
 //    is strictly inside the circumsphere, which is what the Delaunay check uses.
 // Counters count every occurrence; only the first max_problems messages are kept.
 #pragma once
+#include <array>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -75,6 +76,15 @@ ValidationReport validate_trimesh(const TriMesh& mesh, const Pslg* input,
 // relative, so coplanar input triangles may be retriangulated by the mesher), and interior
 // faces that are not subfaces locally Delaunay (exact insphere).
 ValidationReport validate_tetmesh(const TetMesh& mesh, const Surface* input,
+                                  const ValidateOptions& options = {});
+
+// A triangulated surface (e.g. the restricted mesher's): every edge used at most once in each
+// direction (manifold and consistently oriented), with `closed` every edge used in both, every
+// vertex's triangles one fan, no two triangles meeting other than in a shared vertex or edge
+// (exact). Counts go to nonmanifold (edges and vertices), boundary_errors (open edges and
+// intersecting pairs), inverted_elements (triangles repeating a vertex), invalid_indices.
+ValidationReport validate_surface(const std::vector<Point3>& points,
+                                  const std::vector<std::array<int, 3>>& triangles, bool closed,
                                   const ValidateOptions& options = {});
 
 // Quality only (no topology), e.g. for arrays in filters.

@@ -75,4 +75,10 @@ Plc check_surface(const Surface& surface, const CheckOptions& options = {},
 // PLC needs check_surface with require_closed. Throws Error(InvalidInput) when TetGen fails.
 m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks = {});
 
+// The Delaunay tetrahedralization of the points xyz (3 per point; no constraints, TetGen
+// without -p): every tetrahedron of the convex hull, neighbours linked (-1 on the hull), no
+// subfaces or subsegments, points typed kInputPoint in their order. The restricted mesher's
+// initial triangulation. Throws Error when TetGen fails (e.g. all points coplanar).
+m3d::HostTetMesh delaunay_tetrahedralization(const std::vector<double>& xyz);
+
 }  // namespace gdr::cdt3d

@@ -1,3 +1,6 @@
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
 // initial_cdt: the constrained Delaunay tetrahedralization of a checked PLC by TetGen's
 // library, mapped once (no text files) into the engines' HostTetMesh.
 //
@@ -151,6 +154,36 @@ int face_orientation(const std::vector<int>& tv, int t, int i, int a, int b) {
   return -1;
 }
 
+// TetGen's tetrahedra and their neighbours in our numbering (tet_topology.h).
+void convert_tets(const tetgenio& out, HostTetMesh& m) {
+  const int nt = out.numberoftetrahedra;
+  // Tets: TetGen's have orient3d < 0; swapping corners 0 and 1 (and their neighbour
+  // entries: TetGen's neighbour i is across the face opposite corner i) makes them positive.
+  m.tv.resize(4 * static_cast<std::size_t>(nt));
+  for (int t = 0; t < nt; ++t) {
+    const int* v = out.tetrahedronlist + 4 * static_cast<std::size_t>(t);
+    m.tv[4 * t] = v[1];
+    m.tv[4 * t + 1] = v[0];
+    m.tv[4 * t + 2] = v[2];
+    m.tv[4 * t + 3] = v[3];
+  }
+  m.tn.assign(4 * static_cast<std::size_t>(nt), -1);
+  for (int t = 0; t < nt; ++t) {
+    for (int i = 0; i < 4; ++i) {
+      const int tg = i < 2 ? 1 - i : i;  // TetGen's corner index of our corner i
+      const int u = out.neighborlist[4 * static_cast<std::size_t>(t) + tg];
+      if (u < 0) continue;
+      if (u >= nt) internal("TetGen neighbour " + str(u) + " out of range");
+      // Our face i of t must be a face of u; the corner of u off it gives u's face index.
+      const int a = m.tv[4 * t + m3d::face_corner(i, 0)], b = m.tv[4 * t + m3d::face_corner(i, 1)],
+                c = m.tv[4 * t + m3d::face_corner(i, 2)];
+      const int j = face_index(m.tv, u, a, b, c);
+      if (j < 0) internal("TetGen neighbour of tet " + str(t) + " does not share its face " + str(i));
+      m.tn[4 * t + i] = 4 * u + j;
+    }
+  }
+}
+
 // Builds the mesh of everything TetGen meshed (the cells the surface encloses).
 HostTetMesh convert(const Plc& plc, const tetgenio& out) {
   const int nin = static_cast<int>(plc.points.size());
@@ -186,31 +219,7 @@ HostTetMesh convert(const Plc& plc, const tetgenio& out) {
     }
   }
 
-  // Tets: TetGen's have orient3d < 0; swapping corners 0 and 1 (and their neighbour
-  // entries: TetGen's neighbour i is across the face opposite corner i) makes them positive.
-  m.tv.resize(4 * static_cast<std::size_t>(nt));
-  for (int t = 0; t < nt; ++t) {
-    const int* v = out.tetrahedronlist + 4 * static_cast<std::size_t>(t);
-    m.tv[4 * t] = v[1];
-    m.tv[4 * t + 1] = v[0];
-    m.tv[4 * t + 2] = v[2];
-    m.tv[4 * t + 3] = v[3];
-  }
-  m.tn.assign(4 * static_cast<std::size_t>(nt), -1);
-  for (int t = 0; t < nt; ++t) {
-    for (int i = 0; i < 4; ++i) {
-      const int tg = i < 2 ? 1 - i : i;  // TetGen's corner index of our corner i
-      const int u = out.neighborlist[4 * static_cast<std::size_t>(t) + tg];
-      if (u < 0) continue;
-      if (u >= nt) internal("TetGen neighbour " + str(u) + " out of range");
-      // Our face i of t must be a face of u; the corner of u off it gives u's face index.
-      const int a = m.tv[4 * t + m3d::face_corner(i, 0)], b = m.tv[4 * t + m3d::face_corner(i, 1)],
-                c = m.tv[4 * t + m3d::face_corner(i, 2)];
-      const int j = face_index(m.tv, u, a, b, c);
-      if (j < 0) internal("TetGen neighbour of tet " + str(t) + " does not share its face " + str(i));
-      m.tn[4 * t + i] = 4 * u + j;
-    }
-  }
+  convert_tets(out, m);
 
   // Subfaces, found among the tet faces by their corners; the side by orientation.
   const int nsf = out.numberoftrifaces;
@@ -438,7 +447,10 @@ m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks) {
     throw Error(Status::InvalidInput, "initial_cdt needs a closed surface checked with require_closed");
   if (callbacks.progress) callbacks.progress(0.0, "constrained Delaunay tetrahedralization (TetGen)");
   tetgenio in, out;
+  auto T0 = std::chrono::steady_clock::now();
+  auto TR = [&](const char* w) { if (std::getenv("GDR_TRACE")) { auto t = std::chrono::steady_clock::now(); fprintf(stderr, "TRACE %s %.3f\n", w, std::chrono::duration<double>(t - T0).count()); T0 = t; } };
   fill_input(plc, in);
+  TR("fill");
   try {
     run_tetgen("pnO0JQ", in, out);
   } catch (const Error& e) {
@@ -452,14 +464,43 @@ m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks) {
     run_tetgen("pYnO0JQ", in, out);
   }
   if (callbacks.abort && callbacks.abort()) throw Error(Status::Aborted, "aborted after the initial CDT");
+  TR("tetgen");
   const HostTetMesh full = convert(plc, out);
-  HostTetMesh m = keep_domain(plc, full, tet_cells(plc, full));
+  TR("convert");
+  auto cells = tet_cells(plc, full);
+  TR("cells");
+  HostTetMesh m = keep_domain(plc, full, cells);
+  TR("keep");
   mark_subsegments(plc, m);
+  TR("subseg");
   set_facet_planes(plc, m);
+  TR("planes");
 #ifndef NDEBUG
   m3d::check_host_mesh(m);
 #endif
   if (callbacks.progress) callbacks.progress(1.0, "constrained Delaunay tetrahedralization done");
+  return m;
+}
+
+m3d::HostTetMesh delaunay_tetrahedralization(const std::vector<double>& xyz) {
+  const int np = static_cast<int>(xyz.size() / 3);
+  tetgenio in, out;
+  in.firstnumber = 0;
+  in.numberofpoints = np;
+  in.pointlist = new REAL[3 * static_cast<std::size_t>(np)];
+  std::copy(xyz.begin(), xyz.end(), in.pointlist);
+  run_tetgen("nJQ", in, out);  // plain Delaunay: n (neighbours), J (keep numbering), Q (quiet)
+  if (out.numberofcorners != 4 || !out.neighborlist || out.numberofpoints != np)
+    internal("TetGen's Delaunay tetrahedralization returned an unexpected mesh");
+  HostTetMesh m;
+  m.xyz = xyz;
+  m.input_points = np;
+  m.ptype.assign(np, m3d::kInputPoint);
+  m.pseg.assign(np, -1);
+  m.pfacet.assign(np, -1);
+  convert_tets(out, m);
+  m.tsub.assign(m.tv.size(), -1);
+  m.tseg.assign(m.tets(), 0);
   return m;
 }
 

@@ -29,7 +29,10 @@ enum : signed char { kDropped = -1, kSegmentSplit = 0, kFacetSplit = 1, kFreeSpl
 // (kShapePoint: refused in the protecting balls of sharp features), by its size
 // (kSizePoint), or to make room for a split on a segment or facet whose cavity was not
 // star-shaped (kMakeRoomPoint: it goes in even if it encroaches a subsegment or subface).
-enum : signed char { kShapePoint = -1, kMakeRoomPoint = 1, kSizePoint = 2 };
+// kDelaunayPoint: a point of a triangulation without subfaces or subsegments (gDP3d), whose
+// cavity needs only to be star-shaped, exactly: a new tetrahedron that is flat up to rounding
+// but positive is kept (CheckCavity), as nothing constrains where the point lies.
+enum : signed char { kShapePoint = -1, kMakeRoomPoint = 1, kSizePoint = 2, kDelaunayPoint = 3 };
 
 struct Candidate {
   double p[3];
@@ -448,7 +451,7 @@ struct CheckCavity {
       } else if (k == kFaceFan && side > 0) {
         const int* v = m.tv + 4 * t;
         const int a = v[face_corner(f, 0)], b = v[face_corner(f, 1)], d = v[face_corner(f, 2)];
-        if (rounding_flat(pt(m, a), pt(m, b), pt(m, d), c.p, side)) {
+        if (c.ek != kDelaunayPoint && rounding_flat(pt(m, a), pt(m, b), pt(m, d), c.p, side)) {
           failed[h.pt] = kFailStar;  // its tetrahedron on this face would be flat
           exec::atomic_or(&m.tflag[t], kMakeRoom);
         }

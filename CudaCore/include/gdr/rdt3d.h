@@ -1,0 +1,95 @@
+// gDP3d: surface and volume meshing by 3D restricted Delaunay refinement (Chen & Tan,
+// section 7; the criteria of CGAL Mesh_3). Public, VTK-free, CUDA-free facade.
+//
+// The output approximates the input surface rather than keeping it: surface vertices lie on
+// it (up to rounding), surface triangles are the restricted facets (Delaunay faces whose
+// Voronoi dual meets the input), tetrahedra are those whose circumcentre lies inside it.
+#pragma once
+#include <array>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "gdr/backend.h"
+#include "gdr/error.h"
+#include "gdr/progress.h"
+#include "gdr/pslg.h"
+#include "gdr/refine2d.h"  // PhaseTime
+
+namespace gdr {
+
+// Sizes: a negative value asks for the automatic default (relative to the diagonal D of the
+// input's bounding box), 0 turns the criterion off.
+struct RestrictedDelaunayOptions {
+  double facet_angle = 30.0;            // FacetAngle: smallest facet angle, degrees, in [0, 30]
+  double facet_size = -1.0;             // FacetSize: surface Delaunay ball radius (auto: D / 20)
+  double facet_distance = -1.0;         // FacetDistance: facet to surface (auto: D / 500)
+  double cell_radius_edge_ratio = 2.0;  // CellRadiusEdgeRatio: 0 off, else at least 1 (2: guaranteed)
+  double cell_size = -1.0;              // CellSize: circumradius (auto: the facet size)
+  bool mesh_volume = true;              // MeshVolume: false (or an open input): surface only
+  // Refinement stops cleanly at this many Steiner points. -1 (automatic): a cap applies only
+  // where termination is not guaranteed (radius-edge ratio below 2).
+  long long max_steiner_points = -1;
+  Backend backend = Backend::Auto;
+  bool keep_triangulation = false;  // also return the whole Delaunay triangulation (checks)
+};
+
+struct RestrictedDelaunayStats {
+  Backend backend_used = Backend::Cpu;
+  std::string device_name;
+  bool closed_input = false;
+  bool volume_meshed = false;
+  int iterations = 0;
+  long long input_points = 0, input_triangles = 0;
+  long long initial_points = 0;            // input points sampled for the initial triangulation
+  long long steiner_points = 0;            // inserted by the refinement
+  long long triangulation_points = 0, triangulation_tets = 0;  // the whole Delaunay triangulation
+  long long output_points = 0, output_tets = 0, output_triangles = 0;
+  long long bad_facets = 0, bad_tets = 0;  // left above the bounds (stall or cap)
+  long long steiner_cap = -1;
+  bool steiner_cap_reached = false;
+  bool stalled = false;
+  double min_facet_angle_deg = 0, max_facet_size = 0, max_facet_distance = 0;
+  double min_dihedral_deg = 0, max_dihedral_deg = 0, max_radius_edge = 0;
+  double volume = 0, area = 0;             // of the output
+  double facet_angle = 0, facet_size = 0, facet_distance = 0, cell_radius_edge_ratio = 0,
+         cell_size = 0;                    // the criteria in effect (automatic sizes resolved)
+  double input_seconds = 0, initial_seconds = 0, refine_seconds = 0, output_seconds = 0,
+         total_seconds = 0;
+  std::size_t peak_device_bytes = 0;
+  std::vector<PhaseTime> phases;
+};
+
+struct RestrictedDelaunayResult {
+  // Points used by the output; tets: those inside the surface (empty for a surface only);
+  // subfaces: the restricted surface triangles (outward for a closed input, following the
+  // input's orientation for an open one). point_type: Input (an input point from the
+  // initial sample) and Facet (inserted) lie on the surface, Free inside it.
+  TetMesh mesh;
+  // Per surface triangle.
+  std::vector<float> facet_min_angle;    // degrees
+  std::vector<double> facet_size;        // surface Delaunay ball radius
+  std::vector<double> facet_distance;    // facet circumcentre to the surface centre
+  std::vector<unsigned char> facet_is_bad;
+  // Per tetrahedron.
+  std::vector<float> radius_edge, min_dihedral, max_dihedral;  // degrees
+  std::vector<double> volume;
+  std::vector<unsigned char> is_bad;
+  std::vector<long long> dihedral_histogram;     // all six angles, 1-degree bins over [0, 180)
+  std::vector<long long> facet_angle_histogram;  // smallest facet angles, 1-degree bins over [0, 60]
+  // With keep_triangulation: every tetrahedron of the final Delaunay triangulation (inside
+  // and outside the surface, up to the corners of the bounding box), on all its points.
+  TetMesh triangulation;
+  RestrictedDelaunayStats stats;
+};
+
+// Checks the options; throws gdr::Error(InvalidInput).
+void validate_restricted_delaunay_options(const RestrictedDelaunayOptions& options);
+
+// Meshes `input`. Throws gdr::Error (InvalidInput, SelfIntersectingInput, NoDevice,
+// OutOfDeviceMemory, Aborted, InternalError).
+RestrictedDelaunayResult restricted_delaunay_3d(const Surface& input,
+                                                const RestrictedDelaunayOptions& options,
+                                                const Callbacks& callbacks = {});
+
+}  // namespace gdr

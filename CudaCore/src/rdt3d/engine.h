@@ -1,0 +1,231 @@
+// gDP3d refinement loop (paper Algorithm 5), written once for any execution space.
+// engine_cpu.cpp instantiates it for OpenMP, engine_cuda.cu for CUDA.
+//
+// What is gDP3d's own lives here and in kernels.h: restricted facets and interior
+// tetrahedra, the facet and cell criteria, splitting points. Filtering (S3), cavities by
+// ExpandList with deferment (S2, S5), insertion and compaction (S1) are the steps gQM3d runs
+// too: this engine drives them through a qm3d::Engine on the same device mesh rather than a
+// copy of them.
+#pragma once
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "qm3d/engine.h"
+#include "rdt3d/kernels.h"
+
+namespace gdr::rdt3d {
+
+struct EngineParams {
+  Criteria criteria;
+  qm3d::EngineParams insertion;  // strategies, Steiner cap (max_steiner), iteration cap
+};
+
+struct EngineResult {
+  int iterations = 0;
+  long long inserted = 0;
+  bool cap_reached = false;
+  bool stalled = false;
+  std::size_t peak_bytes = 0;
+  std::vector<PhaseTime> phases;
+};
+
+// The final triangulation (live tetrahedra, compacted), with this mesher's flags.
+struct MeshResult {
+  std::vector<double> xyz;
+  std::vector<std::uint8_t> ptype;
+  std::vector<int> tv, tn, tflag;
+  int tets() const { return static_cast<int>(tv.size() / 4); }
+};
+
+// The input surface on the host, for the AABB tree.
+struct SurfaceInput {
+  std::vector<double> xyz;
+  std::vector<int> tri;
+  HostAabb tree;
+  AabbView view() const {
+    return AabbView{xyz.data(), tri.data(), tree.order.data(), tree.box.data(), tree.kids.data(),
+                    static_cast<int>(tree.kids.size() / 2)};
+  }
+};
+
+template <class Space>
+EngineResult refine_restricted(const m3d::HostTetMesh& mesh, const SurfaceInput& surface,
+                               MeshResult& out, const EngineParams& params, const Callbacks& cb);
+
+template <class Space>
+struct Engine {
+  using Ops = exec::Ops<Space>;
+  template <class T>
+  using Buf = exec::Buffer<Space, T>;
+
+  const EngineParams& params;
+  const Callbacks& cb;
+  qm3d::Engine<Space> core;  // the device mesh and the shared insertion steps
+  EngineResult res;
+  Buf<double> sxyz, sbox;
+  Buf<int> stri, sorder, skids;
+  AabbView tree{};
+  bool stagnant = false;
+  const bool trace = std::getenv("GDR_TRACE") != nullptr;
+  static constexpr std::size_t kStallWindow = 40, kSameBacklog = 6;
+  std::vector<std::size_t> backlog;
+  std::vector<int> points;
+
+  Engine(const EngineParams& p, const Callbacks& c) : params(p), cb(c), core(p.insertion, c) {}
+
+  void run(const m3d::HostTetMesh& host, const SurfaceInput& surface, MeshResult& out) {
+    exec::memory_counter<Space>().peak = exec::memory_counter<Space>().current;
+    const std::size_t mem_base = exec::memory_counter<Space>().current;
+    auto& dm = core.dm;
+    dm.upload(host);
+    core.counters.resize_discard(decltype(core)::kCounters);
+    core.counters.zero();
+    sxyz.upload(surface.xyz);
+    stri.upload(surface.tri);
+    sorder.upload(surface.tree.order);
+    sbox.upload(surface.tree.box);
+    skids.upload(surface.tree.kids);
+    tree = AabbView{sxyz.data(), stri.data(), sorder.data(), sbox.data(), skids.data(),
+                    static_cast<int>(surface.tree.kids.size() / 2)};
+    core.clock.template stop<Space>("upload");
+    classify();
+    int idle = 0;
+    for (int iter = 0; iter < params.insertion.max_iterations; ++iter) {
+      if (cb.abort && cb.abort()) throw Error(Status::Aborted, "refinement aborted by the caller");
+      core.clock.restart();
+      const std::size_t nl = collect();  // line 4: bad facets and bad tetrahedra, one list
+      if (nl == 0) break;
+      res.iterations = iter + 1;
+      compute_splitting_points(nl, iter);     // line 5
+      const std::size_t ns = core.filter(nl);  // S3
+      core.grow_cavities(ns);                 // lines 6-7 (S2, S5)
+      refuse_encroaching_cells();
+      const long long won = core.verify_and_number(ns);
+      stagnant = !stagnant && won * 50 < static_cast<long long>(ns);
+      core.stagnant = stagnant;
+      if (won > 0) {
+        core.insert(ns, won);  // line 8
+        mark_surface_points(ns);
+        classify();            // line 9: reclassify the new facets and tetrahedra
+        idle = 0;
+      } else if (++idle >= 8) {
+        res.stalled = true;
+        break;
+      }
+      // Stall detection as gQM3d's: every kStallWindow iterations the backlog must shrink by
+      // a fiftieth or the mesh grow by a quarter; the same backlog several times in a row is
+      // the same elements failing again.
+      backlog.push_back(nl);
+      points.push_back(dm.npts);
+      const std::size_t n = backlog.size();
+      const bool shrinking = n <= kStallWindow || 50 * nl <= 49 * backlog[n - 1 - kStallWindow] ||
+                             4LL * dm.npts >= 5LL * points[n - 1 - kStallWindow];
+      bool unchanged = n > kSameBacklog;
+      for (std::size_t k = 1; unchanged && k <= kSameBacklog; ++k) unchanged = backlog[n - 1 - k] == nl;
+      if (!shrinking || unchanged) {
+        res.stalled = true;
+        break;
+      }
+      if (cb.progress)
+        cb.progress(0.0, "iteration " + std::to_string(iter + 1) + ": " + std::to_string(nl) +
+                             " elements to split, " + std::to_string(won) + " points inserted");
+      if (trace)
+        std::fprintf(stderr,
+                     "gdr-trace rdt iter %d: tets %d, points %d, elements %zu, candidates %zu, won %lld, "
+                     "tuples %zu, rounds %d, lost/encroach/touch/star/defer/cap/delaunay %s\n",
+                     iter + 1, dm.ntet, dm.npts, nl, ns, won, core.tuples.size(), core.rounds,
+                     core.failure_counts().c_str());
+      if (core.res.cap_reached) break;
+    }
+    res.inserted = core.res.inserted;
+    res.cap_reached = core.res.cap_reached;
+    download(out);
+    res.phases = core.res.phases;
+    if (trace)
+      for (const PhaseTime& p : res.phases) std::fprintf(stderr, "gdr-trace rdt phase %s: %.3f s\n", p.name.c_str(), p.seconds);
+    res.peak_bytes = exec::memory_counter<Space>().peak - mem_base;
+  }
+
+  // Line 9: restricted faces and interior flags of the new tetrahedra (kFresh).
+  void classify() {
+    const m3d::TetView mv = core.dm.view();
+    Ops::for_each(core.dm.ntet, ClassifyFresh{mv, tree, params.criteria});
+    Ops::for_each(core.dm.ntet, ClearFresh{mv});
+    core.clock.template stop<Space>("classify");
+  }
+
+  std::size_t collect() {
+    auto& dm = core.dm;
+    Ops::for_each(dm.ntet, CountBad{dm.view(), tree, params.criteria});
+    int* cnt = dm.aux.data();
+    const std::size_t nl = static_cast<std::size_t>(Ops::exclusive_scan(cnt, cnt, dm.ntet));
+    core.list.resize_discard(nl);
+    if (nl)
+      Ops::for_each(dm.ntet, ListBad{dm.view(), tree, params.criteria, core.list.data(), static_cast<int>(nl)});
+    core.clock.template stop<Space>("collect");
+    return nl;
+  }
+
+  // As gQM3d: when far more elements are bad than can win at once, a random share competes.
+  void compute_splitting_points(std::size_t nl, int iter) {
+    const double share = std::min(1.0, (core.dm.ntet / 4.0 + 4096.0) / static_cast<double>(nl));
+    core.keep_below = static_cast<u64>(share * 4294967296.0);
+    core.cand_all.resize_discard(nl);
+    Ops::for_each(nl, ComputeSplittingPoints{core.dm.view(), tree, params.criteria, core.list.data(),
+                                             core.cand_all.data(), 0x9e3779b9u * static_cast<unsigned>(iter + 1),
+                                             core.keep_below, stagnant});
+    core.clock.template stop<Space>("split+locate");
+  }
+
+  void refuse_encroaching_cells() {
+    if (!params.criteria.volume) return;
+    const m3d::TetView mv = core.dm.view();
+    const std::size_t nt = core.tuples.size();
+    Ops::for_each(nt, RefuseEncroachingCells{mv, tree, params.criteria, core.cand.data(),
+                                             core.tuples.data(), core.failed.data()});
+    // The cavities of the points refused here are no longer inserted.
+    Ops::for_each(nt, m3d::SetInCavity{mv, core.tuples.data(), core.failed.data(), 0});
+    core.clock.template stop<Space>("cavity");
+  }
+
+  // Inserted surface centres are surface points (kFacetPoint); the engine wrote kFreePoint.
+  void mark_surface_points(std::size_t ns) {
+    const m3d::TetView mv = core.dm.view();
+    const Candidate* cs = core.cand.data();
+    const int* fl = core.failed.data();
+    const int* pid = core.point_id.data();
+    Ops::for_each(ns, [=] GDR_HD(long long j) {
+      if (!fl[j] && cs[j].a == kSurfacePoint) mv.ptype[pid[j]] = m3d::kFacetPoint;
+    });
+  }
+
+  void download(MeshResult& out) {
+    core.clock.restart();
+    auto& dm = core.dm;
+    m3d::compact(dm);
+    out.xyz.resize(3 * std::size_t(dm.npts));
+    dm.xyz.download(out.xyz.data(), out.xyz.size());
+    out.ptype.resize(dm.npts);
+    dm.ptype.download(out.ptype.data(), out.ptype.size());
+    out.tv.resize(4 * std::size_t(dm.ntet));
+    dm.tv.download(out.tv.data(), out.tv.size());
+    out.tn.resize(4 * std::size_t(dm.ntet));
+    dm.tn.download(out.tn.data(), out.tn.size());
+    out.tflag.resize(dm.ntet);
+    dm.tflag.download(out.tflag.data(), out.tflag.size());
+    core.clock.template stop<Space>("download");
+  }
+};
+
+template <class Space>
+EngineResult refine_restricted(const m3d::HostTetMesh& mesh, const SurfaceInput& surface,
+                               MeshResult& out, const EngineParams& params, const Callbacks& cb) {
+  Engine<Space> engine(params, cb);
+  engine.run(mesh, surface, out);
+  return engine.res;
+}
+
+}  // namespace gdr::rdt3d

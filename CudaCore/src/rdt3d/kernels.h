@@ -1,0 +1,344 @@
+// The per-element work of gDP3d that is its own (paper section 7): which faces of the
+// Delaunay triangulation are restricted to the input surface (their Voronoi dual meets it),
+// which tetrahedra lie inside it, the facet and cell criteria, and the splitting points.
+// Cavities and insertion are mesh3d's (cavity.h), run by the shared engine steps.
+#pragma once
+#include <cmath>
+
+#include "exec/hd.h"
+#include "exec/priority.h"
+#include "mesh3d/cavity.h"
+#include "mesh3d/locate.h"
+#include "rdt3d/aabb.h"
+
+namespace gdr::rdt3d {
+
+using exec::u64;
+using m3d::Candidate;
+using m3d::pt;
+using m3d::TetView;
+
+// The criteria, in forms without square roots or trigonometry (0: off).
+struct Criteria {
+  double sin2_facet_angle = 0;  // sin^2 of FacetAngle
+  double facet_size2 = 0;       // FacetSize^2: the radius of the facet's surface Delaunay ball
+  double facet_distance2 = 0;   // FacetDistance^2: facet circumcentre to surface centre
+  double radius_edge2 = 0;      // CellRadiusEdgeRatio^2
+  double cell_size2 = 0;        // CellSize^2: circumradius
+  int volume = 1;               // 1: classify and refine tetrahedra inside the surface
+  double reach = 0;             // longer than any segment from inside the box out of it
+  int step_limit = 1 << 20;     // point-location walk bound
+};
+
+// Tetrahedron flag bits of this mesher. It has no subfaces or subsegments, and runs its own
+// collect phase, so it keeps its per-tetrahedron state in the bits gQM3d uses for its collect
+// mask (m3d::kCollectBits; compaction moves them with the tetrahedron).
+enum : int {
+  kRestricted0 = 1 << m3d::kCollectShift,  // bits 19-22: face i is a restricted facet
+  kRestrictedBits = 15 << m3d::kCollectShift,
+  kInterior = 1 << (m3d::kCollectShift + 4),  // the circumcentre lies inside the surface
+};
+
+// Candidate::a of a point on the surface (a free point otherwise, a = -1): its point type is
+// set to kFacetPoint after insertion.
+enum : int { kSurfacePoint = 1 };
+
+// Points on the surface: the sample of input points and inserted surface centres (box
+// corners and circumcentres are free points).
+GDR_HD_INLINE bool on_surface(const TetView& m, int v) {
+  return m.ptype[v] == m3d::kInputPoint || m.ptype[v] == m3d::kFacetPoint;
+}
+
+GDR_HD_INLINE bool tet_center(const TetView& m, int t, double* c) {
+  const int* v = m.tv + 4 * t;
+  return m3d::tet_circumcenter(pt(m, v[0]), pt(m, v[1]), pt(m, v[2]), pt(m, v[3]), c);
+}
+
+// The Voronoi edge dual to face f of t, from t's circumcentre p to the neighbour's q; on the
+// hull (no neighbour) a ray along the face's outward normal, cut at `reach`.
+GDR_HD_INLINE bool dual_segment(const TetView& m, const Criteria& c, int t, int f, double* p, double* q) {
+  if (!tet_center(m, t, p)) return false;
+  const int nb = m.tn[4 * t + f];
+  if (nb >= 0) return tet_center(m, nb >> 2, q);
+  const int* v = m.tv + 4 * t;
+  const double* a = pt(m, v[m3d::face_corner(f, 0)]);
+  const double* b = pt(m, v[m3d::face_corner(f, 1)]);
+  const double* d = pt(m, v[m3d::face_corner(f, 2)]);
+  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  const double w[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+  double n[3];
+  // Corners counter-clockwise seen from outside (tet_topology.h): u x w points outward.
+  m3d::cross3(u, w, n);
+  const double len = sqrt(m3d::dot3(n, n));
+  if (!(len > 0)) return false;
+  for (int k = 0; k < 3; ++k) q[k] = p[k] + c.reach * n[k] / len;
+  return true;
+}
+
+GDR_HD_INLINE bool restricted_face(const TetView& m, const AabbView& s, const Criteria& c, int t, int f) {
+  double p[3], q[3];
+  if (!dual_segment(m, c, t, f, p, q)) return false;
+  return segment_meets_surface(s, p, q);
+}
+
+// The surface centre x of restricted face f of t (where its dual meets the surface; of
+// several, the centre of the largest surface Delaunay ball) and the input triangle it lies on.
+GDR_HD_INLINE bool surface_centre(const TetView& m, const AabbView& s, const Criteria& c, int t, int f,
+                                  double* x, int* tri) {
+  double p[3], q[3];
+  if (!dual_segment(m, c, t, f, p, q)) return false;
+  const int a = m.tv[4 * t + m3d::face_corner(f, 0)];
+  return surface_point_on_segment(s, p, q, pt(m, a), x, tri);
+}
+
+// Is the face listed from t? Each face is listed once: from the lesser of its two tetrahedra.
+GDR_HD_INLINE bool owns_face(const TetView& m, int t, int f) {
+  const int nb = m.tn[4 * t + f];
+  return nb < 0 || t < (nb >> 2);
+}
+
+// Facet criteria (CGAL Mesh_3's names) for a restricted facet abc with surface centre x: a
+// corner off the surface, the smallest angle below FacetAngle, the surface Delaunay ball's
+// radius above FacetSize, the facet's circumcentre farther than FacetDistance from x.
+GDR_HD_INLINE bool facet_is_bad(const TetView& m, const Criteria& c, int t, int f, const double* x) {
+  const int* v = m.tv + 4 * t;
+  const int ia = v[m3d::face_corner(f, 0)], ib = v[m3d::face_corner(f, 1)], ic = v[m3d::face_corner(f, 2)];
+  if (!on_surface(m, ia) || !on_surface(m, ib) || !on_surface(m, ic)) return true;
+  const double *a = pt(m, ia), *b = pt(m, ib), *d = pt(m, ic);
+  if (c.facet_size2 > 0 && m3d::dist2(x, a) > c.facet_size2) return true;
+  double cc[3];
+  if (!m3d::tri_circumcenter(a, b, d, cc)) return true;
+  const double r2 = m3d::dist2(cc, a);
+  if (c.sin2_facet_angle > 0) {
+    // The smallest angle lies opposite the shortest edge: sin = lmin / (2 r).
+    const double lmin2 = fmin(m3d::dist2(a, b), fmin(m3d::dist2(b, d), m3d::dist2(a, d)));
+    if (lmin2 < 4 * r2 * c.sin2_facet_angle) return true;
+  }
+  return c.facet_distance2 > 0 && m3d::dist2(cc, x) > c.facet_distance2;
+}
+
+struct TetSize {
+  double r2 = 0, lmin2 = 0, center[3] = {0, 0, 0};
+  bool ok = false;
+};
+
+GDR_HD_INLINE TetSize tet_size(const TetView& m, int t) {
+  TetSize s;
+  const int* v = m.tv + 4 * t;
+  double l = INFINITY;
+  for (int e = 0; e < 6; ++e)
+    l = fmin(l, m3d::dist2(pt(m, v[m3d::edge_corner(e, 0)]), pt(m, v[m3d::edge_corner(e, 1)])));
+  s.lmin2 = l;
+  s.ok = tet_center(m, t, s.center);
+  s.r2 = s.ok ? m3d::dist2(s.center, pt(m, v[0])) : INFINITY;
+  return s;
+}
+
+// CGAL Mesh_3's rule: a tetrahedron's circumcentre is not inserted where it would destroy a
+// restricted facet whose surface Delaunay ball holds it (it would spoil the surface next to
+// it, and the surface refinement could cascade); the facet is refined instead (the
+// kSplitFace0 bit of its face: this mesher has no subfaces). Runs on the cavities that
+// passed every other check, before the winners are numbered.
+struct RefuseEncroachingCells {
+  TetView m;
+  AabbView s;
+  Criteria c;
+  const Candidate* cand;
+  const m3d::CavityTuple* tuples;
+  int* failed;
+  GDR_HD void operator()(long long i) const {
+    const m3d::CavityTuple& h = tuples[i];
+    if (m3d::is_sub_tuple(h) || m3d::result_of(h) != m3d::kCavity || failed[h.pt]) return;
+    const Candidate& p = cand[h.pt];
+    if (p.a == kSurfacePoint) return;
+    const int t = h.elem, flags = m.tflag[t];
+    for (int f = 0; f < 4; ++f) {
+      if (!(flags & (kRestricted0 << f))) continue;
+      double x[3];
+      int tri;
+      if (!surface_centre(m, s, c, t, f, x, &tri)) continue;
+      const double r2 = m3d::dist2(x, pt(m, m.tv[4 * t + m3d::face_corner(f, 0)]));
+      if (m3d::dist2(p.p, x) < r2) {
+        exec::atomic_or(&m.tflag[t], m3d::kSplitFace0 << f);
+        failed[h.pt] = m3d::kFailEncroach;
+      }
+    }
+  }
+};
+
+// Cell criteria, for tetrahedra inside the surface: radius-edge ratio above
+// CellRadiusEdgeRatio, circumradius above CellSize.
+enum : int { kCellGood = 0, kCellShape = 1, kCellSize = 2 };
+GDR_HD_INLINE int classify_cell(const TetView& m, const Criteria& c, int t, const TetSize& s) {
+  if (!c.volume || !(m.tflag[t] & kInterior)) return kCellGood;
+  if (c.cell_size2 > 0 && s.r2 > c.cell_size2) return kCellSize;
+  if (c.radius_edge2 > 0 && s.r2 > c.radius_edge2 * s.lmin2) return kCellShape;
+  return kCellGood;
+}
+
+// ---------------------------------------------------------------------------------------
+// Reclassification of new tetrahedra (those flagged kFresh by insertion): whether each face
+// is restricted, set on both of its sides, and whether the tetrahedron lies inside the
+// surface. A face between two new tetrahedra is decided by the lesser one. ClearFresh runs
+// after, so that every thread sees the same fresh flags.
+struct ClassifyFresh {
+  TetView m;
+  AabbView s;
+  Criteria c;
+  GDR_HD void operator()(long long i) const {
+    const int t = static_cast<int>(i);
+    const int flags = m.tflag[t];
+    if ((flags & m3d::kDead) || !(flags & m3d::kFresh)) return;
+    for (int f = 0; f < 4; ++f) {
+      const int nb = m.tn[4 * t + f];
+      const int u = nb >> 2;
+      if (nb >= 0 && (m.tflag[u] & m3d::kFresh) && u < t) continue;
+      const bool r = restricted_face(m, s, c, t, f);
+      set_bit(t, kRestricted0 << f, r);
+      if (nb >= 0) set_bit(u, kRestricted0 << (nb & 3), r);
+    }
+    bool inside = false;
+    if (c.volume) {
+      double o[3];
+      inside = tet_center(m, t, o) && inside_surface(s, o, c.reach);
+    }
+    set_bit(t, kInterior, inside);
+  }
+  GDR_HD void set_bit(int t, int bit, bool on) const {
+    if (on) exec::atomic_or(&m.tflag[t], bit);
+    else exec::atomic_and(&m.tflag[t], ~bit);
+  }
+};
+
+struct ClearFresh {
+  TetView m;
+  GDR_HD void operator()(long long i) const { m.tflag[i] &= ~m3d::kFresh; }
+};
+
+// ---------------------------------------------------------------------------------------
+// Collect (S4: one list): bad restricted facets and bad tetrahedra inside the surface, as
+// 8t + slot (slot f < 4: face f; slot 4: the tetrahedron). The count per tetrahedron goes to
+// aux, which the engine scans in place into list offsets.
+enum : int { kSlotCell = 4 };
+
+GDR_HD_INLINE int collect_mask(const TetView& m, const AabbView& s, const Criteria& c, int t) {
+  const int flags = m.tflag[t];
+  if (flags & m3d::kDead) return 0;
+  int mask = 0;
+  for (int f = 0; f < 4; ++f) {
+    if (!(flags & (kRestricted0 << f))) continue;
+    if (flags & (m3d::kSplitFace0 << f)) {  // a cell's circumcentre encroached it
+      mask |= 1 << f;
+      continue;
+    }
+    if (!owns_face(m, t, f)) continue;
+    double x[3];
+    int tri;
+    if (surface_centre(m, s, c, t, f, x, &tri) && facet_is_bad(m, c, t, f, x)) mask |= 1 << f;
+  }
+  if (c.volume && (flags & kInterior)) {
+    const TetSize sz = tet_size(m, t);
+    if (classify_cell(m, c, t, sz) != kCellGood) mask |= 1 << kSlotCell;
+  }
+  return mask;
+}
+
+struct CountBad {
+  TetView m;
+  AabbView s;
+  Criteria c;
+  GDR_HD void operator()(long long i) const {
+    const int mask = collect_mask(m, s, c, static_cast<int>(i));
+    int n = 0;
+    for (int k = 0; k < 5; ++k) n += (mask >> k) & 1;
+    m.aux[i] = n;
+  }
+};
+
+struct ListBad {
+  TetView m;
+  AabbView s;
+  Criteria c;
+  int* list;
+  int total;  // entries in the list
+  GDR_HD void operator()(long long i) const {
+    const int t = static_cast<int>(i);
+    const int next = t + 1 < m.ntet ? m.aux[t + 1] : total;
+    if (next == m.aux[t]) return;  // nothing listed here (the scan did not step)
+    const int mask = collect_mask(m, s, c, t);
+    int o = m.aux[t];
+    for (int k = 0; k < 5; ++k)
+      if (mask & (1 << k)) list[o++] = 8 * t + k;
+  }
+};
+
+// ---------------------------------------------------------------------------------------
+// Splitting points (Algorithm 5): the surface centre of a bad facet, the circumcentre of a
+// bad tetrahedron; located by walking from the element. Priorities: facets first (larger
+// surface balls first), then tetrahedra too big (larger first), then tetrahedra bad by shape
+// (worst radius-edge ratio first); a pseudo-random id inside a size class.
+enum : unsigned { kClassShape = 0, kClassCellSize = 1, kClassFacet = 3 };
+
+GDR_HD_INLINE float size_class(double size) {
+  if (!(size > 0) || !(size < 1e38)) return size > 0 ? 1e38f : 0.0f;
+  return static_cast<float>(exp2(floor(log2(size))));
+}
+
+GDR_HD_INLINE unsigned shuffle_id(unsigned x, unsigned salt) {  // a bijection of 32 bits
+  x ^= salt;
+  x ^= x >> 16;
+  x *= 0x7feb352du;
+  x ^= x >> 15;
+  x *= 0x846ca68bu;
+  x ^= x >> 16;
+  return x;
+}
+
+struct ComputeSplittingPoints {
+  TetView m;
+  AabbView s;
+  Criteria c;
+  const int* list;
+  Candidate* out;
+  unsigned salt;
+  u64 keep_below;  // ids at or above this do not compete this iteration
+  bool shuffle;    // random order within each class (after an iteration without headway)
+  GDR_HD void operator()(long long j) const {
+    Candidate& cand = out[j];
+    cand.kind = m3d::kDropped;
+    const unsigned id = shuffle_id(static_cast<unsigned>(j), salt);
+    if (id >= keep_below) return;
+    const int e = list[j];
+    const int t = e >> 3, slot = e & 7;
+    double p[3];
+    u64 prio;
+    bool surface = false;
+    if (slot < kSlotCell) {
+      int tri;
+      if (!surface_centre(m, s, c, t, slot, p, &tri)) return;
+      const double r2 = m3d::dist2(p, pt(m, m.tv[4 * t + m3d::face_corner(slot, 0)]));
+      prio = exec::make_priority(kClassFacet, size_class(r2), id);
+      surface = true;
+    } else {
+      const TetSize sz = tet_size(m, t);
+      if (!sz.ok) return;
+      for (int k = 0; k < 3; ++k) p[k] = sz.center[k];
+      prio = classify_cell(m, c, t, sz) == kCellSize
+                 ? exec::make_priority(kClassCellSize, size_class(sz.r2), id)
+                 : exec::make_priority(kClassShape, static_cast<float>(fmin(sz.r2 / sz.lmin2, 1e38)), id);
+    }
+    const int start = m3d::locate_point(m, t, p, c.step_limit);
+    if (start < 0 || m3d::is_corner_point(m, start, p)) return;
+    for (int k = 0; k < 3; ++k) cand.p[k] = p[k];
+    cand.prio = shuffle ? exec::make_priority(unsigned(prio >> 62), 0.0f, id) : prio;
+    cand.start = start;
+    cand.sub = -1;
+    cand.a = surface ? kSurfacePoint : -1;
+    cand.b = -1;
+    cand.origin = -1;
+    cand.kind = m3d::kFreeSplit;
+    cand.ek = m3d::kDelaunayPoint;
+  }
+};
+
+}  // namespace gdr::rdt3d

@@ -1,0 +1,394 @@
+// gDP3d facade: the paper's Algorithm 5 end to end.
+//   1. check the surface (cdt3d's checks; an open surface is meshed as a surface only);
+//   2. the Delaunay triangulation of a sample of its points and a bounding box (TetGen), all
+//      tetrahedra kept (line 1);
+//   3. refine on the chosen backend (lines 2-10, engine.h);
+//   4. the restricted surface and the tetrahedra inside it, with their quality.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <new>
+#include <random>
+#include <string>
+#include <utility>
+
+#include "cdt3d/cdt3d.h"
+#include "cdt3d/internal.h"
+#include "gdr/rdt3d.h"
+#include "gdr/validate.h"
+#include "rdt3d/engine_dispatch.h"
+
+namespace gdr {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr std::size_t kSamplePerPart = 32;  // initial points per connected part of the surface
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+std::uint64_t edge_key(int a, int b) {
+  if (a > b) std::swap(a, b);
+  return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b);
+}
+
+// Whether every edge has two triangles; throws for an edge of three or more (the inside of
+// such a surface is not defined by parity).
+bool closed_manifold(const cdt3d::Plc& plc) {
+  std::map<std::uint64_t, int> count;
+  for (const auto& t : plc.triangles)
+    for (int k = 0; k < 3; ++k) ++count[edge_key(t[k], t[(k + 1) % 3])];
+  bool closed = true;
+  for (const auto& [key, n] : count) {
+    if (n > 2) {
+      const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffffu);
+      auto input_id = [&](int v) {
+        for (std::size_t i = 0; i < plc.point_map.size(); ++i)
+          if (plc.point_map[i] == v) return static_cast<long long>(i);
+        return static_cast<long long>(v);
+      };
+      throw Error(Status::InvalidInput, "the surface is not manifold: the edge (" + std::to_string(input_id(a)) +
+                                            ", " + std::to_string(input_id(b)) + ") has " +
+                                            std::to_string(n) + " triangles");
+    }
+    closed = closed && n == 2;
+  }
+  return closed;
+}
+
+// Connected parts of the surface (triangles sharing a vertex), for the initial sample.
+std::vector<std::vector<int>> components(const cdt3d::Plc& plc) {
+  const int np = static_cast<int>(plc.points.size());
+  cdt3d::UnionFind sets(np);
+  std::vector<char> used(np, 0);
+  for (const auto& t : plc.triangles)
+    for (int k = 0; k < 3; ++k) {
+      used[t[k]] = 1;
+      sets.unite(t[k], t[(k + 1) % 3]);
+    }
+  std::map<int, std::vector<int>> parts;
+  for (int v = 0; v < np; ++v)
+    if (used[v]) parts[sets.find(v)].push_back(v);
+  std::vector<std::vector<int>> out;
+  for (auto& [root, vs] : parts) out.push_back(std::move(vs));
+  return out;
+}
+
+double automatic(double value, double fallback) { return value < 0 ? fallback : value; }
+
+}  // namespace
+
+void validate_restricted_delaunay_options(const RestrictedDelaunayOptions& o) {
+  auto bad = [](const std::string& what) { throw Error(Status::InvalidInput, what); };
+  if (!(o.facet_angle >= 0 && o.facet_angle <= 30))
+    bad("facet angle must be in [0, 30] degrees (above 30 the refinement need not terminate), got " +
+        std::to_string(o.facet_angle));
+  if (!std::isfinite(o.facet_size) || !std::isfinite(o.facet_distance) || !std::isfinite(o.cell_size))
+    bad("facet size, facet distance and cell size must be finite");
+  if (!(o.cell_radius_edge_ratio == 0 || (o.cell_radius_edge_ratio >= 1.0 && std::isfinite(o.cell_radius_edge_ratio))))
+    bad("cell radius-edge ratio must be at least 1 (or 0 to turn it off), got " +
+        std::to_string(o.cell_radius_edge_ratio));
+  if (o.max_steiner_points < -1) bad("maximum Steiner points must be >= 0 (or -1: automatic)");
+  if (o.facet_angle == 0 && o.facet_size == 0 && o.facet_distance == 0)
+    bad("at least one facet criterion (angle, size or distance) is needed");
+}
+
+RestrictedDelaunayResult restricted_delaunay_3d(const Surface& input, const RestrictedDelaunayOptions& options,
+                                                const Callbacks& cb) {
+  const auto t_start = Clock::now();
+  validate_restricted_delaunay_options(options);
+  RestrictedDelaunayResult result;
+  RestrictedDelaunayStats& st = result.stats;
+  auto aborted = [&] { return cb.abort && cb.abort(); };
+  auto progress = [&](double f, const std::string& what) {
+    if (cb.progress) cb.progress(f, what);
+  };
+  st.input_points = static_cast<long long>(input.points.size());
+  st.input_triangles = static_cast<long long>(input.triangles.size());
+
+  progress(0.0, "checking input");
+  cdt3d::CheckOptions check;
+  check.require_closed = false;
+  const cdt3d::Plc plc = cdt3d::check_surface(input, check, cb);
+  st.closed_input = closed_manifold(plc);
+  st.volume_meshed = options.mesh_volume && st.closed_input;
+  if (options.mesh_volume && !st.closed_input && cb.warning)
+    cb.warning("the surface is open: only the surface is meshed (a volume needs a closed surface)");
+  st.input_seconds = since(t_start);
+  if (aborted()) throw Error(Status::Aborted, "aborted by the caller");
+
+  // The box: the input's, and a margin of half its diagonal for the corners of the initial
+  // triangulation (every inserted point lies in the input's box: surface centres on the
+  // surface, circumcentres inside it).
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (const auto& t : plc.triangles)
+    for (int v : t) {
+      const double p[3] = {plc.points[v].x, plc.points[v].y, plc.points[v].z};
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = std::min(lo[k], p[k]);
+        hi[k] = std::max(hi[k], p[k]);
+      }
+    }
+  const double diag = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                                (hi[2] - lo[2]) * (hi[2] - lo[2]));
+  const double facet_size = automatic(options.facet_size, diag / 20);
+  const double facet_distance = automatic(options.facet_distance, diag / 500);
+  const double cell_size = automatic(options.cell_size, facet_size);
+  st.facet_angle = options.facet_angle;
+  st.facet_size = facet_size;
+  st.facet_distance = facet_distance;
+  st.cell_radius_edge_ratio = options.cell_radius_edge_ratio;
+  st.cell_size = cell_size;
+
+  // Line 1: the initial Delaunay triangulation of a sample of every connected part and the
+  // box corners. The sample is random (fixed seed): points spread by index can all lie on one
+  // curve (a row of a parametric grid), whose Voronoi edges may all miss the surface (a torus
+  // sampled along its outer equator crosses each Voronoi facet in a closed loop).
+  progress(0.02, "initial Delaunay triangulation");
+  auto t0 = Clock::now();
+  std::vector<double> xyz;
+  std::mt19937 random(12345);
+  for (auto part : components(plc)) {
+    const std::size_t n = part.size(), take = std::min<std::size_t>(n, kSamplePerPart);
+    for (std::size_t k = 0; k < take; ++k) {
+      std::swap(part[k], part[k + random() % (n - k)]);
+      const Point3& p = plc.points[part[k]];
+      xyz.insert(xyz.end(), {p.x, p.y, p.z});
+    }
+  }
+  const int sample = static_cast<int>(xyz.size() / 3);
+  st.initial_points = sample;
+  for (int c = 0; c < 8; ++c)
+    for (int k = 0; k < 3; ++k) xyz.push_back((c >> k) & 1 ? hi[k] + 0.5 * diag : lo[k] - 0.5 * diag);
+  m3d::HostTetMesh mesh = cdt3d::delaunay_tetrahedralization(xyz);
+  for (int v = sample; v < mesh.points(); ++v) mesh.ptype[v] = m3d::kFreePoint;  // box corners
+  st.initial_seconds = since(t0);
+  if (aborted()) throw Error(Status::Aborted, "aborted by the caller");
+
+  rdt3d::SurfaceInput surface;
+  surface.xyz.reserve(3 * plc.points.size());
+  for (const Point3& p : plc.points) surface.xyz.insert(surface.xyz.end(), {p.x, p.y, p.z});
+  for (const auto& t : plc.triangles) surface.tri.insert(surface.tri.end(), {t[0], t[1], t[2]});
+  surface.tree = rdt3d::build_aabb(surface.xyz, surface.tri);
+
+  rdt3d::EngineParams params;
+  rdt3d::Criteria& c = params.criteria;
+  const double s = std::sin(options.facet_angle * kPi / 180.0);
+  c.sin2_facet_angle = s * s;
+  c.facet_size2 = facet_size * facet_size;
+  c.facet_distance2 = facet_distance * facet_distance;
+  c.radius_edge2 = options.cell_radius_edge_ratio * options.cell_radius_edge_ratio;
+  c.cell_size2 = cell_size * cell_size;
+  c.volume = st.volume_meshed ? 1 : 0;
+  c.reach = 8 * diag;  // beyond the corners' box from anywhere in it
+  params.insertion.max_steiner = options.max_steiner_points;
+  if (options.max_steiner_points < 0 && st.volume_meshed && options.cell_radius_edge_ratio > 0 &&
+      options.cell_radius_edge_ratio < 2)
+    params.insertion.max_steiner = std::max<long long>(1000000, 200LL * static_cast<long long>(plc.points.size()));
+  st.steiner_cap = params.insertion.max_steiner;
+
+  // Rough output size for Auto: the surface area over the facet size squared, and the volume
+  // over the cell size cubed.
+  const double area_est = diag * diag, vol_est = diag * diag * diag / 10;
+  double est = 4 * area_est / std::max(facet_size * facet_size, 1e-300 * diag * diag);
+  if (st.volume_meshed && cell_size > 0) est += 6 * vol_est / (cell_size * cell_size * cell_size);
+  const std::size_t estimated = est > 1e12 ? std::size_t(1e12) : static_cast<std::size_t>(est);
+  st.backend_used = resolve_backend(options.backend, estimated, 20000 * std::size_t(std::max(1, cpu_threads())));
+  if (st.backend_used == Backend::Gpu) st.device_name = device_info().name;
+  else st.device_name = "CPU (" + std::to_string(cpu_threads()) + " OpenMP threads)";
+
+  Callbacks engine_cb = cb;
+  if (cb.progress)
+    engine_cb.progress = [&cb, n = 0](double, const std::string& what) mutable {
+      ++n;
+      cb.progress(0.05 + 0.85 * (1.0 - 1.0 / (1.0 + 0.05 * n)), what);
+    };
+  t0 = Clock::now();
+  rdt3d::MeshResult out;
+  rdt3d::EngineResult er;
+  try {
+    if (st.backend_used == Backend::Gpu) {
+#if defined(GDR_HAVE_CUDA)
+      er = rdt3d::refine_restricted_cuda(mesh, surface, out, params, engine_cb);
+      mark_gpu_warm();
+#endif
+    } else {
+      er = rdt3d::refine_restricted_cpu(mesh, surface, out, params, engine_cb);
+    }
+  } catch (const std::bad_alloc&) {
+    throw Error(Status::OutOfDeviceMemory, "out of memory during refinement");
+  }
+  st.refine_seconds = since(t0);
+  st.iterations = er.iterations;
+  st.steiner_cap_reached = er.cap_reached;
+  st.stalled = er.stalled;
+  st.phases = er.phases;
+  st.steiner_points = er.inserted;
+  if (st.backend_used == Backend::Gpu) st.peak_device_bytes = er.peak_bytes;
+  if (er.cap_reached && cb.warning)
+    cb.warning("refinement stopped at the Steiner point cap (" + std::to_string(st.steiner_cap) + ")");
+  if (aborted()) throw Error(Status::Aborted, "aborted by the caller");
+
+  // The output, read off the final triangulation with the engine's own predicates.
+  progress(0.92, "restricted surface and volume");
+  const auto t_output = Clock::now();
+  m3d::TetView m{};
+  m.xyz = out.xyz.data();
+  m.ptype = out.ptype.data();
+  m.tv = out.tv.data();
+  m.tn = out.tn.data();
+  m.tflag = out.tflag.data();
+  m.ntet = out.tets();
+  m.npts = static_cast<int>(out.ptype.size());
+  const rdt3d::AabbView tree = surface.view();
+  st.triangulation_points = m.npts;
+  st.triangulation_tets = m.ntet;
+
+  // Input orientation (for facets whose dual does not separate inside from outside): the
+  // sign of the enclosed volume.
+  double signed_volume = 0;
+  for (const auto& t : plc.triangles) {
+    const Point3 &a = plc.points[t[0]], &b = plc.points[t[1]], &d = plc.points[t[2]];
+    signed_volume += a.x * (b.y * d.z - b.z * d.y) - a.y * (b.x * d.z - b.z * d.x) + a.z * (b.x * d.y - b.y * d.x);
+  }
+  std::vector<int> new_id(m.npts, -1);
+  TetMesh& tm = result.mesh;
+  auto use = [&](int v) {
+    if (new_id[v] < 0) {
+      new_id[v] = static_cast<int>(tm.points.size());
+      tm.points.push_back({out.xyz[3 * v], out.xyz[3 * v + 1], out.xyz[3 * v + 2]});
+      tm.point_type.push_back(static_cast<PointType>(out.ptype[v]));
+    }
+    return new_id[v];
+  };
+  result.facet_angle_histogram.assign(61, 0);
+  double min_angle = 180, max_size = 0, max_dist = 0, area = 0;
+  for (int t = 0; t < m.ntet; ++t) {
+    for (int f = 0; f < 4; ++f) {
+      if (!(out.tflag[t] & (rdt3d::kRestricted0 << f)) || !rdt3d::owns_face(m, t, f)) continue;
+      double x[3];
+      int tri = -1;
+      if (!rdt3d::surface_centre(m, tree, c, t, f, x, &tri)) continue;
+      int v[3] = {m.tv[4 * t + m3d::face_corner(f, 0)], m.tv[4 * t + m3d::face_corner(f, 1)],
+                  m.tv[4 * t + m3d::face_corner(f, 2)]};
+      // Face order is counter-clockwise seen from outside t: keep it when t is the inside.
+      const int nb = m.tn[4 * t + f];
+      const bool in_t = (out.tflag[t] & rdt3d::kInterior) != 0;
+      const bool in_u = nb >= 0 && (out.tflag[nb >> 2] & rdt3d::kInterior) != 0;
+      bool flip;
+      if (st.volume_meshed && in_t != in_u) {
+        flip = !in_t;
+      } else {
+        // Along the input triangle's normal (outward when the input's volume is positive).
+        const double* a = rdt3d::corner(tree, tri, 0);
+        const double* b = rdt3d::corner(tree, tri, 1);
+        const double* d = rdt3d::corner(tree, tri, 2);
+        const double u1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, u2[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+        double n[3], w[3];
+        m3d::cross3(u1, u2, n);
+        const double* p0 = m3d::pt(m, v[0]);
+        const double* p1 = m3d::pt(m, v[1]);
+        const double* p2 = m3d::pt(m, v[2]);
+        const double e1[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]},
+                     e2[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
+        m3d::cross3(e1, e2, w);
+        flip = (m3d::dot3(n, w) < 0) != (st.volume_meshed && signed_volume < 0);
+      }
+      if (flip) std::swap(v[1], v[2]);
+      const Point3 a{out.xyz[3 * v[0]], out.xyz[3 * v[0] + 1], out.xyz[3 * v[0] + 2]};
+      const Point3 b{out.xyz[3 * v[1]], out.xyz[3 * v[1] + 1], out.xyz[3 * v[1] + 2]};
+      const Point3 d{out.xyz[3 * v[2]], out.xyz[3 * v[2] + 1], out.xyz[3 * v[2] + 2]};
+      double cc[3];
+      const double* pa = m3d::pt(m, v[0]);
+      m3d::tri_circumcenter(pa, m3d::pt(m, v[1]), m3d::pt(m, v[2]), cc);
+      const double size = std::sqrt(m3d::dist2(x, pa)), dist = std::sqrt(m3d::dist2(x, cc));
+      // Angles from the edge lengths (law of cosines), smallest opposite the shortest edge.
+      auto len = [](const Point3& p, const Point3& q) {
+        return std::sqrt((p.x - q.x) * (p.x - q.x) + (p.y - q.y) * (p.y - q.y) + (p.z - q.z) * (p.z - q.z));
+      };
+      const double la = len(b, d), lb = len(a, d), lc = len(a, b);
+      const double lmin = std::min({la, lb, lc});
+      const double o1 = lmin == la ? lb : la, o2 = lmin == lc ? lb : lc;
+      const double cosine = std::clamp((o1 * o1 + o2 * o2 - lmin * lmin) / (2 * o1 * o2), -1.0, 1.0);
+      const double angle = std::acos(cosine) * 180 / kPi;
+      const double ux[3] = {b.x - a.x, b.y - a.y, b.z - a.z}, vx[3] = {d.x - a.x, d.y - a.y, d.z - a.z};
+      double nx[3];
+      m3d::cross3(ux, vx, nx);
+      area += 0.5 * std::sqrt(m3d::dot3(nx, nx));
+      tm.subfaces.push_back({use(v[0]), use(v[1]), use(v[2])});
+      result.facet_min_angle.push_back(static_cast<float>(angle));
+      result.facet_size.push_back(size);
+      result.facet_distance.push_back(dist);
+      result.facet_is_bad.push_back(rdt3d::facet_is_bad(m, c, t, f, x) ? 1 : 0);
+      ++result.facet_angle_histogram[std::min(60, std::max(0, static_cast<int>(angle)))];
+      min_angle = std::min(min_angle, angle);
+      max_size = std::max(max_size, size);
+      max_dist = std::max(max_dist, dist);
+    }
+  }
+  st.output_triangles = static_cast<long long>(tm.subfaces.size());
+  for (unsigned char b : result.facet_is_bad) st.bad_facets += b;
+  st.min_facet_angle_deg = tm.subfaces.empty() ? 0 : min_angle;
+  st.max_facet_size = max_size;
+  st.max_facet_distance = max_dist;
+  st.area = area;
+
+  result.dihedral_histogram.assign(180, 0);
+  if (st.volume_meshed) {
+    double min_d = 180, max_d = 0, max_re = 0, total = 0;
+    for (int t = 0; t < m.ntet; ++t) {
+      if (!(out.tflag[t] & rdt3d::kInterior)) continue;
+      const int* q = m.tv + 4 * t;
+      tm.tets.push_back({use(q[0]), use(q[1]), use(q[2]), use(q[3])});
+      const auto& v = tm.tets.back();
+      const Point3 &a = tm.points[v[0]], &b = tm.points[v[1]], &d = tm.points[v[2]], &e = tm.points[v[3]];
+      double angles[6];
+      tet_dihedral_angles(a, b, d, e, angles);
+      double lo_a = 180, hi_a = 0;
+      for (double x : angles) {
+        lo_a = std::min(lo_a, x);
+        hi_a = std::max(hi_a, x);
+        ++result.dihedral_histogram[std::min(179, std::max(0, static_cast<int>(x)))];
+      }
+      const double re = tet_radius_edge(a, b, d, e), vol = tet_volume(a, b, d, e);
+      result.radius_edge.push_back(static_cast<float>(re));
+      result.min_dihedral.push_back(static_cast<float>(lo_a));
+      result.max_dihedral.push_back(static_cast<float>(hi_a));
+      result.volume.push_back(vol);
+      const bool bad = rdt3d::classify_cell(m, c, t, rdt3d::tet_size(m, t)) != rdt3d::kCellGood;
+      result.is_bad.push_back(bad ? 1 : 0);
+      st.bad_tets += bad;
+      total += vol;
+      min_d = std::min(min_d, lo_a);
+      max_d = std::max(max_d, hi_a);
+      if (std::isfinite(re)) max_re = std::max(max_re, re);
+    }
+    st.volume = total;
+    st.min_dihedral_deg = tm.tets.empty() ? 0 : min_d;
+    st.max_dihedral_deg = tm.tets.empty() ? 0 : max_d;
+    st.max_radius_edge = max_re;
+  }
+  if (options.keep_triangulation) {
+    TetMesh& all = result.triangulation;
+    all.points.resize(m.npts);
+    all.point_type.resize(m.npts);
+    for (int v = 0; v < m.npts; ++v) {
+      all.points[v] = {out.xyz[3 * v], out.xyz[3 * v + 1], out.xyz[3 * v + 2]};
+      all.point_type[v] = static_cast<PointType>(out.ptype[v]);
+    }
+    all.tets.resize(m.ntet);
+    for (int t = 0; t < m.ntet; ++t) all.tets[t] = {m.tv[4 * t], m.tv[4 * t + 1], m.tv[4 * t + 2], m.tv[4 * t + 3]};
+  }
+  st.output_points = static_cast<long long>(tm.points.size());
+  st.output_tets = static_cast<long long>(tm.tets.size());
+  if (st.stalled && cb.warning)
+    cb.warning("refinement stopped: the elements left cannot be split further; " +
+               std::to_string(st.bad_facets) + " facets and " + std::to_string(st.bad_tets) +
+               " tetrahedra remain above the bounds");
+  st.output_seconds = since(t_output);
+  st.total_seconds = since(t_start);
+  progress(1.0, "done");
+  return result;
+}
+
+}  // namespace gdr

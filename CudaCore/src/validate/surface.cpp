@@ -1,0 +1,100 @@
+// validate_surface: a triangulated surface as a 2-manifold (closed and consistently oriented
+// when asked), without self-intersections (exact, cdt3d's triangle tests).
+#include <algorithm>
+#include <map>
+#include <string>
+
+#include "cdt3d/internal.h"
+#include "gdr/validate.h"
+#include "validate/incidence.h"
+
+namespace gdr {
+
+ValidationReport validate_surface(const std::vector<Point3>& points,
+                                  const std::vector<std::array<int, 3>>& triangles, bool closed,
+                                  const ValidateOptions& options) {
+  ValidationReport r;
+  validate::Problems problems{r.problems, options.max_problems};
+  const int np = static_cast<int>(points.size());
+  auto text = [](const std::array<int, 3>& t) {
+    return "(" + std::to_string(t[0]) + ", " + std::to_string(t[1]) + ", " + std::to_string(t[2]) + ")";
+  };
+  // Directed edges: a consistently oriented manifold uses each once, with its reverse once
+  // (closed) or not at all (a boundary edge).
+  std::map<std::pair<int, int>, int> directed;
+  for (std::size_t i = 0; i < triangles.size(); ++i) {
+    const auto& t = triangles[i];
+    bool ok = true;
+    for (int v : t) ok = ok && v >= 0 && v < np;
+    if (!ok) {
+      ++r.invalid_indices;
+      problems.add("triangle " + std::to_string(i) + " " + text(t) + " has a vertex index out of range");
+      continue;
+    }
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) {
+      ++r.inverted_elements;
+      problems.add("triangle " + std::to_string(i) + " " + text(t) + " repeats a vertex");
+      continue;
+    }
+    for (int k = 0; k < 3; ++k) ++directed[{t[k], t[(k + 1) % 3]}];
+  }
+  std::map<int, std::vector<std::pair<int, int>>> around;  // vertex -> its link edges
+  for (const auto& t : triangles) {
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) continue;
+    for (int k = 0; k < 3; ++k) around[t[k]].push_back({t[(k + 1) % 3], t[(k + 2) % 3]});
+  }
+  for (const auto& [e, n] : directed) {
+    const auto it = directed.find({e.second, e.first});
+    const int back = it == directed.end() ? 0 : it->second;
+    if (n > 1) {
+      ++r.nonmanifold;
+      problems.add("edge (" + std::to_string(e.first) + ", " + std::to_string(e.second) +
+                   ") is used " + std::to_string(n) + " times in one direction (non-manifold or "
+                   "inconsistently oriented)");
+    } else if (back == 0 && closed) {
+      ++r.boundary_errors;
+      problems.add("edge (" + std::to_string(e.first) + ", " + std::to_string(e.second) +
+                   ") has one triangle: the surface is not closed");
+    }
+  }
+  // Each vertex's link must be one path or one cycle (no pinched vertices).
+  for (auto& [v, link] : around) {
+    std::map<int, int> next;
+    for (const auto& [a, b] : link) next[a] = b;
+    std::map<int, int> indegree;
+    for (const auto& [a, b] : link) ++indegree[b];
+    int start = link[0].first;
+    for (const auto& [a, b] : link)
+      if (!indegree.count(a)) start = a;  // a path starts where nothing enters
+    std::size_t seen = 0;
+    int x = start;
+    while (seen <= link.size()) {
+      const auto it = next.find(x);
+      if (it == next.end()) break;
+      x = it->second;
+      ++seen;
+      if (x == start) break;
+    }
+    if (seen != link.size()) {
+      ++r.nonmanifold;
+      problems.add("vertex " + std::to_string(v) + " is not manifold (its triangles form " +
+                   "more than one fan)");
+    }
+  }
+  std::vector<std::array<int, 2>> pairs;
+  std::vector<std::array<int, 3>> good;
+  for (const auto& t : triangles)
+    if (t[0] != t[1] && t[1] != t[2] && t[0] != t[2] && t[0] >= 0 && t[1] >= 0 && t[2] >= 0 &&
+        t[0] < np && t[1] < np && t[2] < np)
+      good.push_back(t);
+  const long long clashes = cdt3d::find_clashing_triangles(points, good, 5, pairs);
+  if (clashes) {
+    r.boundary_errors += static_cast<std::size_t>(clashes);
+    for (const auto& p : pairs)
+      problems.add("triangles " + text(good[p[0]]) + " and " + text(good[p[1]]) + " intersect");
+  }
+  r.valid = r.invalid_indices == 0 && r.inverted_elements == 0 && r.nonmanifold == 0 && r.boundary_errors == 0;
+  return r;
+}
+
+}  // namespace gdr

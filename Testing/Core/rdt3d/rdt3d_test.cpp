@@ -1,0 +1,290 @@
+// gDP3d (restricted Delaunay refinement) on the CPU backend: the AABB tree's exact tests,
+// and meshes checked by invariants: tetrahedra valid and their boundary the restricted
+// surface (validate_tetmesh), the whole triangulation Delaunay (exact insphere), the surface a
+// closed oriented 2-manifold without self-intersections (validate_surface), surface vertices
+// on the input, the facet criteria met, and volume and area converging to the exact values.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "../cdt3d/surfaces.h"
+#include "gdr/rdt3d.h"
+#include "gdr/validate.h"
+#include "rdt3d/aabb.h"
+
+namespace gdr {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// A torus around the z axis (major radius R, minor r), n x m quads split in two, outward.
+Surface torus(double R, double r, int n, int m) {
+  Surface s;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < m; ++j) {
+      const double u = 2 * kPi * i / n, v = 2 * kPi * j / m;
+      s.points.push_back({(R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u), r * std::sin(v)});
+    }
+  auto id = [&](int i, int j) { return (i % n) * m + (j % m); };
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < m; ++j) {
+      s.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      s.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return s;
+}
+
+// The upper half (z >= 0) of an icosphere: an open surface.
+Surface hemisphere(int levels) {
+  const Surface full = test::icosphere(levels);
+  Surface s;
+  s.points = full.points;
+  for (const auto& t : full.triangles)
+    if (full.points[t[0]].z >= 0 && full.points[t[1]].z >= 0 && full.points[t[2]].z >= 0) s.triangles.push_back(t);
+  return s;
+}
+
+double dist_point_triangle(const Point3& p, const Point3& a, const Point3& b, const Point3& c) {
+  // Closest point by regions (Ericson, Real-Time Collision Detection, 5.1.5).
+  auto sub = [](const Point3& x, const Point3& y) { return Point3{x.x - y.x, x.y - y.y, x.z - y.z}; };
+  auto dot = [](const Point3& x, const Point3& y) { return x.x * y.x + x.y * y.y + x.z * y.z; };
+  auto at = [](const Point3& o, const Point3& d1, double s, const Point3& d2, double t) {
+    return Point3{o.x + s * d1.x + t * d2.x, o.y + s * d1.y + t * d2.y, o.z + s * d1.z + t * d2.z};
+  };
+  const Point3 ab = sub(b, a), ac = sub(c, a), ap = sub(p, a);
+  Point3 q;
+  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+  const Point3 bp = sub(p, b), cp = sub(p, c);
+  const double d3 = dot(ab, bp), d4 = dot(ac, bp), d5 = dot(ab, cp), d6 = dot(ac, cp);
+  const double vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
+  if (d1 <= 0 && d2 <= 0) q = a;
+  else if (d3 >= 0 && d4 <= d3) q = b;
+  else if (d6 >= 0 && d5 <= d6) q = c;
+  else if (vc <= 0 && d1 >= 0 && d3 <= 0) q = at(a, ab, d1 / (d1 - d3), ac, 0);
+  else if (vb <= 0 && d2 >= 0 && d6 <= 0) q = at(a, ab, 0, ac, d2 / (d2 - d6));
+  else if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) {
+    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    q = Point3{b.x + w * (c.x - b.x), b.y + w * (c.y - b.y), b.z + w * (c.z - b.z)};
+  } else {
+    const double den = 1 / (va + vb + vc);
+    q = at(a, ab, vb * den, ac, vc * den);
+  }
+  const Point3 d = sub(p, q);
+  return std::sqrt(dot(d, d));
+}
+
+double dist_to_surface(const Point3& p, const Surface& s) {
+  double best = INFINITY;
+  for (const auto& t : s.triangles)
+    best = std::min(best, dist_point_triangle(p, s.points[t[0]], s.points[t[1]], s.points[t[2]]));
+  return best;
+}
+
+double enclosed_volume(const Surface& s) {
+  double v = 0;
+  for (const auto& t : s.triangles) {
+    const Point3 &a = s.points[t[0]], &b = s.points[t[1]], &c = s.points[t[2]];
+    v += a.x * (b.y * c.z - b.z * c.y) - a.y * (b.x * c.z - b.z * c.x) + a.z * (b.x * c.y - b.y * c.x);
+  }
+  return v / 6;
+}
+
+// Every invariant this mesher promises, for a closed (volume) or open (surface only) input.
+void expect_valid(const RestrictedDelaunayResult& r, const Surface& input, bool closed, bool volume) {
+  const auto& st = r.stats;
+  EXPECT_FALSE(st.stalled);
+  EXPECT_FALSE(st.steiner_cap_reached);
+  const ValidationReport surf = validate_surface(r.mesh.points, r.mesh.subfaces, closed);
+  EXPECT_TRUE(surf.valid) << surf.summary();
+  ASSERT_GT(r.mesh.subfaces.size(), 0u);
+  if (volume) {
+    ASSERT_GT(r.mesh.tets.size(), 0u);
+    // Positive tetrahedra whose boundary is exactly the restricted surface.
+    ValidateOptions vo;
+    vo.check_conformity = false;
+    const ValidationReport tets = validate_tetmesh(r.mesh, nullptr, vo);
+    EXPECT_TRUE(tets.valid) << tets.summary();
+  }
+  if (!r.triangulation.tets.empty()) {
+    ValidateOptions vo;
+    vo.check_conformity = false;
+    const ValidationReport all = validate_tetmesh(r.triangulation, nullptr, vo);
+    EXPECT_TRUE(all.valid) << all.summary();
+    EXPECT_EQ(all.non_delaunay, 0u);
+  }
+  // Surface vertices lie on the input (up to rounding of the intersection points).
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (const Point3& p : input.points) {
+    lo[0] = std::min(lo[0], p.x), hi[0] = std::max(hi[0], p.x);
+    lo[1] = std::min(lo[1], p.y), hi[1] = std::max(hi[1], p.y);
+    lo[2] = std::min(lo[2], p.z), hi[2] = std::max(hi[2], p.z);
+  }
+  const double diag = std::hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+  std::vector<char> on(r.mesh.points.size(), 0);
+  for (const auto& t : r.mesh.subfaces)
+    for (int v : t) on[v] = 1;
+  double worst = 0;
+  for (std::size_t v = 0; v < on.size(); ++v)
+    if (on[v]) worst = std::max(worst, dist_to_surface(r.mesh.points[v], input));
+  EXPECT_LT(worst, 1e-12 * diag);
+  // The facet criteria hold everywhere (no stall, no cap).
+  EXPECT_EQ(st.bad_facets, 0);
+  EXPECT_EQ(st.bad_tets, 0);
+  EXPECT_GE(st.min_facet_angle_deg, st.facet_angle - 1e-9);
+  if (st.facet_size > 0) EXPECT_LE(st.max_facet_size, st.facet_size * (1 + 1e-12));
+  if (st.facet_distance > 0) EXPECT_LE(st.max_facet_distance, st.facet_distance * (1 + 1e-12));
+}
+
+TEST(Aabb, SegmentTriangleExact) {
+  const double a[3] = {0, 0, 0}, b[3] = {1, 0, 0}, c[3] = {0, 1, 0};
+  const double p[3] = {0.2, 0.2, -1}, q[3] = {0.2, 0.2, 1};
+  EXPECT_EQ(rdt3d::segment_triangle(p, q, a, b, c), rdt3d::kCross);
+  const double e[3] = {0.5, 0, -1}, f[3] = {0.5, 0, 1};  // through the edge ab
+  EXPECT_EQ(rdt3d::segment_triangle(e, f, a, b, c), rdt3d::kTouch);
+  const double g[3] = {0.6, 0.6, -1}, h[3] = {0.6, 0.6, 1};  // beyond the edge bc
+  EXPECT_EQ(rdt3d::segment_triangle(g, h, a, b, c), rdt3d::kMiss);
+  const double i[3] = {0.2, 0.2, 0.5};  // stops short of the plane
+  EXPECT_EQ(rdt3d::segment_triangle(i, q, a, b, c), rdt3d::kMiss);
+  EXPECT_EQ(rdt3d::segment_triangle(p, i, a, b, c), rdt3d::kCross);
+}
+
+TEST(Aabb, InsideSurfaceByParity) {
+  Surface s = test::icosphere(3);
+  test::append(s, test::icosphere(2, 0.5));  // a cavity: the shell between is inside
+  std::vector<double> xyz;
+  std::vector<int> tri;
+  for (const Point3& p : s.points) xyz.insert(xyz.end(), {p.x, p.y, p.z});
+  for (const auto& t : s.triangles) tri.insert(tri.end(), {t[0], t[1], t[2]});
+  const rdt3d::HostAabb tree = rdt3d::build_aabb(xyz, tri);
+  const rdt3d::AabbView view{xyz.data(), tri.data(), tree.order.data(), tree.box.data(), tree.kids.data(),
+                             static_cast<int>(tree.kids.size() / 2)};
+  const double centre[3] = {0, 0, 0}, shell[3] = {0.1, 0.7, 0.05}, out[3] = {1.2, 0.3, 0.1}, far[3] = {5, 5, 5};
+  EXPECT_FALSE(rdt3d::inside_surface(view, centre, 10));
+  EXPECT_TRUE(rdt3d::inside_surface(view, shell, 10));
+  EXPECT_FALSE(rdt3d::inside_surface(view, out, 10));
+  EXPECT_FALSE(rdt3d::inside_surface(view, far, 10));
+  // A vertex of the input: every ray is degenerate there, and it counts as outside.
+  const double v[3] = {xyz[0], xyz[1], xyz[2]};
+  EXPECT_FALSE(rdt3d::inside_surface(view, v, 10));
+  const double p[3] = {0.2, 0.1, -2}, q[3] = {0.2, 0.1, 2};
+  EXPECT_TRUE(rdt3d::segment_meets_surface(view, p, q));
+  const double r[3] = {0.2, 0.1, -0.2};
+  EXPECT_FALSE(rdt3d::segment_meets_surface(view, r, centre));
+}
+
+RestrictedDelaunayOptions sizes(double facet_size, double facet_distance, double cell_size) {
+  RestrictedDelaunayOptions o;
+  o.facet_size = facet_size;
+  o.facet_distance = facet_distance;
+  o.cell_size = cell_size;
+  o.backend = Backend::Cpu;
+  o.keep_triangulation = true;
+  return o;
+}
+
+TEST(RestrictedDelaunay, SphereValidAndConverges) {
+  const Surface s = test::icosphere(5);  // 20480 triangles
+  const double exact_v = enclosed_volume(s), exact_a = 4 * kPi;
+  double prev_v = INFINITY;
+  for (const double h : {0.5, 0.2}) {
+    const RestrictedDelaunayResult r = restricted_delaunay_3d(s, sizes(h, h / 10, h), {});
+    SCOPED_TRACE("facet size " + std::to_string(h));
+    EXPECT_TRUE(r.stats.volume_meshed);
+    expect_valid(r, s, true, true);
+    const double ev = std::abs(r.stats.volume - exact_v) / exact_v;
+    const double ea = std::abs(r.stats.area - exact_a) / exact_a;
+    EXPECT_LT(ev, prev_v);
+    prev_v = ev;
+    if (h < 0.3) {
+      EXPECT_LT(ev, 0.03);
+      EXPECT_LT(ea, 0.03);
+    }
+  }
+}
+
+TEST(RestrictedDelaunay, TorusValidAndConverges) {
+  const double R = 1, r0 = 0.35;
+  const Surface s = torus(R, r0, 96, 48);
+  const double exact_v = enclosed_volume(s), exact_a = 4 * kPi * kPi * R * r0;
+  double prev = INFINITY;
+  for (const double h : {0.3, 0.15}) {
+    const RestrictedDelaunayResult r = restricted_delaunay_3d(s, sizes(h, h / 10, h), {});
+    SCOPED_TRACE("facet size " + std::to_string(h));
+    expect_valid(r, s, true, true);
+    const double ev = std::abs(r.stats.volume - exact_v) / exact_v;
+    EXPECT_LT(ev, prev);
+    prev = ev;
+    if (h < 0.2) {
+      EXPECT_LT(ev, 0.04);
+      EXPECT_LT(std::abs(r.stats.area - exact_a) / exact_a, 0.04);
+    }
+  }
+}
+
+TEST(RestrictedDelaunay, NestedShellsMeshTheShellBetween) {
+  Surface s = test::icosphere(4);
+  test::append(s, test::icosphere(3, 0.5));
+  const RestrictedDelaunayResult r = restricted_delaunay_3d(s, sizes(0.2, 0.02, 0.2), {});
+  expect_valid(r, s, true, true);
+  const double exact = 4.0 / 3 * kPi * (1 - 0.125);
+  EXPECT_NEAR(r.stats.volume, exact, 0.05 * exact);
+  EXPECT_NEAR(r.stats.area, 4 * kPi * 1.25, 0.05 * 4 * kPi * 1.25);
+}
+
+TEST(RestrictedDelaunay, OpenHemisphereIsMeshedAsASurface) {
+  const Surface s = hemisphere(4);
+  std::vector<std::string> warnings;
+  Callbacks cb;
+  cb.warning = [&](const std::string& w) { warnings.push_back(w); };
+  const RestrictedDelaunayResult r = restricted_delaunay_3d(s, sizes(0.15, 0.015, 0.15), cb);
+  EXPECT_FALSE(r.stats.closed_input);
+  EXPECT_FALSE(r.stats.volume_meshed);
+  EXPECT_TRUE(r.mesh.tets.empty());
+  bool open_warning = false;
+  for (const std::string& w : warnings) open_warning = open_warning || w.find("open") != std::string::npos;
+  EXPECT_TRUE(open_warning);
+  expect_valid(r, s, false, false);
+  // Restricted facets stop short of the open boundary, by about a facet size all around.
+  EXPECT_LT(r.stats.area, 2 * kPi * 1.01);
+  EXPECT_GT(r.stats.area, 2 * kPi - 2 * kPi * 0.15);
+}
+
+TEST(RestrictedDelaunay, SurfaceOnlyOfAClosedSurface) {
+  const Surface s = test::icosphere(4);
+  RestrictedDelaunayOptions o = sizes(0.2, 0.02, 0.2);
+  o.mesh_volume = false;
+  const RestrictedDelaunayResult r = restricted_delaunay_3d(s, o, {});
+  EXPECT_TRUE(r.stats.closed_input);
+  EXPECT_TRUE(r.mesh.tets.empty());
+  expect_valid(r, s, true, false);
+}
+
+TEST(RestrictedDelaunay, RefusesWhatCannotTerminate) {
+  const Surface s = test::icosphere(2);
+  RestrictedDelaunayOptions o;
+  o.facet_angle = 35;
+  try {
+    restricted_delaunay_3d(s, o, {});
+    FAIL() << "a facet angle above 30 degrees was accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.status(), Status::InvalidInput);
+    EXPECT_NE(std::string(e.what()).find("facet angle"), std::string::npos);
+  }
+  o = RestrictedDelaunayOptions{};
+  o.cell_radius_edge_ratio = 0.5;
+  EXPECT_THROW(restricted_delaunay_3d(s, o, {}), Error);
+}
+
+TEST(RestrictedDelaunay, RefusesNonManifoldEdges) {
+  Surface s = test::split_box();  // an internal facet: edges of three triangles
+  try {
+    restricted_delaunay_3d(s, {}, {});
+    FAIL() << "a non-manifold surface was accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.status(), Status::InvalidInput);
+    EXPECT_NE(std::string(e.what()).find("not manifold"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace gdr
