@@ -1,6 +1,3 @@
-#include <chrono>
-#include <cstdio>
-#include <cstdlib>
 // initial_cdt: the constrained Delaunay tetrahedralization of a checked PLC by TetGen's
 // library, mapped once (no text files) into the engines' HostTetMesh.
 //
@@ -447,10 +444,7 @@ m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks) {
     throw Error(Status::InvalidInput, "initial_cdt needs a closed surface checked with require_closed");
   if (callbacks.progress) callbacks.progress(0.0, "constrained Delaunay tetrahedralization (TetGen)");
   tetgenio in, out;
-  auto T0 = std::chrono::steady_clock::now();
-  auto TR = [&](const char* w) { if (std::getenv("GDR_TRACE")) { auto t = std::chrono::steady_clock::now(); fprintf(stderr, "TRACE %s %.3f\n", w, std::chrono::duration<double>(t - T0).count()); T0 = t; } };
   fill_input(plc, in);
-  TR("fill");
   try {
     run_tetgen("pnO0JQ", in, out);
   } catch (const Error& e) {
@@ -464,17 +458,10 @@ m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks) {
     run_tetgen("pYnO0JQ", in, out);
   }
   if (callbacks.abort && callbacks.abort()) throw Error(Status::Aborted, "aborted after the initial CDT");
-  TR("tetgen");
   const HostTetMesh full = convert(plc, out);
-  TR("convert");
-  auto cells = tet_cells(plc, full);
-  TR("cells");
-  HostTetMesh m = keep_domain(plc, full, cells);
-  TR("keep");
+  HostTetMesh m = keep_domain(plc, full, tet_cells(plc, full));
   mark_subsegments(plc, m);
-  TR("subseg");
   set_facet_planes(plc, m);
-  TR("planes");
 #ifndef NDEBUG
   m3d::check_host_mesh(m);
 #endif
