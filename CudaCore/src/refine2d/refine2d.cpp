@@ -78,18 +78,26 @@ struct SizeEstimate {
   double typical = 0;
 };
 
-SizeEstimate estimate_size(const r2d::HostMesh& m, const Refine2dOptions& o) {
+// `region_area2`: twice the regions' area bounds by region number - 1 (EngineParams).
+SizeEstimate estimate_size(const r2d::HostMesh& m, const Refine2dOptions& o,
+                           const std::vector<double>& region_area2) {
   SizeEstimate e;
+  double area_bounded = 0;  // the triangles the area bounds ask for, region by region
   for (int t = 0; t < m.triangles(); ++t) {
     const double* a = &m.xy[2 * m.tv[3 * t]];
     const double* b = &m.xy[2 * m.tv[3 * t + 1]];
     const double* c = &m.xy[2 * m.tv[3 * t + 2]];
-    e.area += 0.5 * std::fabs((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]));
+    const double area = 0.5 * std::fabs((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]));
+    e.area += area;
+    double bound = o.max_area;
+    const int r = m.tregion.empty() ? 0 : m.tregion[t];
+    if (r > 0 && r <= static_cast<int>(region_area2.size()) && region_area2[r - 1] > 0)
+      bound = bound > 0 ? std::min(bound, 0.5 * region_area2[r - 1]) : 0.5 * region_area2[r - 1];
+    if (bound > 0) area_bounded += area / bound;
   }
-  double bounds = 0;
+  double bounds = area_bounded;
   if (o.max_edge_length > 0)
     bounds = std::max(bounds, e.area / (0.433 * o.max_edge_length * o.max_edge_length));
-  if (o.max_area > 0) bounds = std::max(bounds, e.area / o.max_area);
   e.least = std::max(static_cast<double>(m.triangles()), bounds);
   e.typical = std::max(4.0 * m.points(), 2.0 * bounds);
   return e;
@@ -175,6 +183,7 @@ void refuse_what_cannot_fit(const SizeEstimate& e, double capacity, int cdt_tria
   std::string bounds;
   if (o.max_edge_length > 0) bounds += "maximum edge length " + rounded(o.max_edge_length);
   if (o.max_area > 0) bounds += (bounds.empty() ? "" : ", ") + ("maximum area " + rounded(o.max_area));
+  if (bounds.empty()) bounds = "the regions' maximum areas";  // the only other size bounds
   const std::string ask = "the size bounds (" + bounds + ") ask for at least " +
                           rounded(std::min(need, 1e300)) + " triangles over the domain's area of " +
                           rounded(area);
@@ -320,7 +329,10 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
 
   r2d::Criteria crit = make_criteria(options);
   crit.grid_exp = scale.grid_exp;
-  const SizeEstimate estimate = estimate_size(mesh, options);
+  std::vector<double> region_area2;  // twice each region's area bound, by region number - 1
+  if (options.region_areas)
+    for (const RegionSeed2& r : pslg.regions) region_area2.push_back(r.max_area > 0 ? 2 * r.max_area : 0.0);
+  const SizeEstimate estimate = estimate_size(mesh, options, region_area2);
   st.backend_used = resolve_backend(options.backend,
                                     static_cast<std::size_t>(std::min(estimate.typical, 1e15)),
                                     gpu_min_triangles(options));
@@ -331,8 +343,7 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
   // subsegments and bad triangles the same way).
   r2d::EngineParams params;
   params.criteria = crit;
-  if (options.region_areas)  // twice each region's area bound, by region number - 1
-    for (const RegionSeed2& r : pslg.regions) params.region_area2.push_back(r.max_area > 0 ? 2 * r.max_area : 0.0);
+  params.region_area2 = region_area2;
   if (options.refine) {
     const double capacity = triangle_capacity(st.backend_used);
     refuse_what_cannot_fit(estimate, capacity, mesh.triangles(), st.backend_used, user_options,

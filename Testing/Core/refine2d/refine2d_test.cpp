@@ -959,3 +959,20 @@ TEST(TriangleSwitches, RegionSwitches) {
   EXPECT_TRUE(o.region_areas && o.region_attributes && o.refine);
   EXPECT_EQ(o.max_area, 0);
 }
+
+// The regions' area bounds count in the size estimate: bounds whose mesh cannot be numbered
+// are refused at once, as a global bound is (it used to refine up to the automatic cap).
+TEST(Refine2dRegions, RegionalBoundsCountInTheSizeEstimate) {
+  Pslg g = two_regions();
+  g.regions[0].max_area = 1e-10;
+  gdr::Refine2dOptions o;
+  o.backend = Backend::Cpu;
+  try {
+    gdr::refine_2d(g, o);
+    ADD_FAILURE() << "accepted";
+  } catch (const gdr::Error& e) {
+    EXPECT_EQ(e.status(), gdr::Status::InvalidInput);
+    EXPECT_NE(std::string(e.what()).find("the regions' maximum areas) ask for at least 1e+10"),
+              std::string::npos) << e.what();
+  }
+}
