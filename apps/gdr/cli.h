@@ -31,6 +31,7 @@ class UsageError : public std::runtime_error {
 // Subcommands; `args` excludes the program and subcommand names. Return an ExitCode.
 int run_2d(const std::vector<std::string>& args);
 int run_tet(const std::vector<std::string>& args);
+int run_rdt(const std::vector<std::string>& args);
 int run_info(const std::vector<std::string>& args);
 int run_selfcheck(const std::vector<std::string>& args);
 

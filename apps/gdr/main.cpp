@@ -18,6 +18,7 @@ const char* kHelp = R"(gdr - quality Delaunay meshing on the GPU (CUDA) or the C
 Usage:
   gdr 2d INPUT.poly -o OUTPUT [options]   refine a 2D planar straight-line graph
   gdr tet INPUT -o OUTPUT [options]       quality tetrahedral mesh of a closed 3D surface
+  gdr rdt INPUT -o OUTPUT [options]       surface (and volume) mesh approximating a 3D surface
   gdr info INPUT                          describe an input file (counts, bounding box, kind)
   gdr selfcheck                           show the build and device, mesh a small test case
   gdr --version                           print the version and build configuration
@@ -76,6 +77,7 @@ int dispatch(const std::vector<std::string>& argv) {
   }
   if (cmd == "2d") return run_2d(rest);
   if (cmd == "tet") return run_tet(rest);
+  if (cmd == "rdt") return run_rdt(rest);
   if (cmd == "info") return run_info(rest);
   if (cmd == "selfcheck") return run_selfcheck(rest);
   throw UsageError("", "unknown command '" + cmd + "'");

@@ -83,6 +83,12 @@ void write_vtk_legacy(const std::string& path, const TriMesh& mesh, const Attrib
 // the cell array Region (its tet_region).
 void write_vtu(const std::string& path, const TetMesh& mesh, const Attributes& attributes = {});
 
+// The surface of a TetMesh (its subfaces, on its points: the restricted mesher's surface) as
+// VTK XML polydata, with PointType and the caller's per-triangle arrays; write_surface picks
+// .vtp or .off (points and triangles only) by the extension.
+void write_surface_vtp(const std::string& path, const TetMesh& mesh, const Attributes& attributes = {});
+void write_surface(const std::string& path, const TetMesh& mesh, const Attributes& attributes = {});
+
 // Triangle .node/.ele (+ .poly of subsegments), numbered from the mesh's first_index, with
 // point attributes and boundary markers in the .node, the regional attribute in the .ele and
 // the subsegments' boundary markers in the .poly, as Triangle writes them; TetGen

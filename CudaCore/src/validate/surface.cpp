@@ -1,6 +1,7 @@
 // validate_surface: a triangulated surface as a 2-manifold (closed and consistently oriented
 // when asked), without self-intersections (exact, cdt3d's triangle tests).
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <string>
 
@@ -92,6 +93,13 @@ ValidationReport validate_surface(const std::vector<Point3>& points,
     r.boundary_errors += static_cast<std::size_t>(clashes);
     for (const auto& p : pairs)
       problems.add("triangles " + text(good[p[0]]) + " and " + text(good[p[1]]) + " intersect");
+  }
+  r.quality.elements = triangles.size();
+  for (const auto& t : good) {
+    const Point3 &a = points[t[0]], &b = points[t[1]], &c = points[t[2]];
+    const double u[3] = {b.x - a.x, b.y - a.y, b.z - a.z}, v[3] = {c.x - a.x, c.y - a.y, c.z - a.z};
+    const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    r.quality.total_measure += 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
   }
   r.valid = r.invalid_indices == 0 && r.inverted_elements == 0 && r.nonmanifold == 0 && r.boundary_errors == 0;
   return r;

@@ -1,0 +1,427 @@
+// `gdr rdt`: surface and volume meshing by restricted Delaunay refinement (gDP3d).
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "args.h"
+#include "cli.h"
+#include "command_support.h"
+#include "gdr/backend.h"
+#include "gdr/io.h"
+#include "gdr/rdt3d.h"
+#include "gdr/validate.h"
+#include "interrupt.h"
+#include "json_writer.h"
+#include "progress_bar.h"
+#include "table.h"
+
+namespace gdr::cli {
+
+namespace {
+
+const char* kHelpRdt = R"(gdr rdt - surface and volume mesh approximating a surface (restricted Delaunay)
+
+Usage:
+  gdr rdt INPUT -o OUTPUT [options]
+
+INPUT is a triangulated surface: .off, .stl (ASCII or binary), .ply, .obj. It may be
+coarse, fine or badly shaped: it is resampled with well-shaped triangles of the chosen
+size (3D restricted Delaunay refinement, as CGAL Mesh_3 does), whose vertices lie on it.
+A closed surface (one or several shells; a shell inside another bounds a cavity) gives
+tetrahedra inside it and the surface around them; an open surface, or --surface-only,
+gives the surface alone. Non-manifold or self-intersecting surfaces are refused with the
+edges or faces named. OUTPUT is written by its extension:
+  .vtu   the tetrahedra (cell arrays RadiusEdgeRatio, MinDihedralAngle, MaxDihedralAngle,
+         Volume, IsBad; point array PointType: 0 input point, 3 on the surface, 2 inside),
+         and the surface beside it as NAME_surface.vtp (cell arrays MinAngle, Size,
+         Distance, IsBad)
+  .mesh  Medit: tetrahedra and surface triangles
+  .vtp   the surface alone (what --surface-only writes; also for open surfaces)
+  .off   the surface alone, points and triangles
+Without -o the mesh is computed, summarized and (with --check) validated, but not written.
+
+Criteria (CGAL Mesh_3's names; sizes default to fractions of the bounding box diagonal D):
+  --facet-angle DEG        smallest angle of a surface triangle (default 30, at most 30)
+  --facet-size S           radius of a surface triangle's surface Delaunay ball (default D/20)
+  --facet-distance D       distance from a surface triangle's circumcentre to the input
+                           surface (default D/500)
+  --cell-radius-edge B     largest circumradius-to-shortest-edge ratio of a tetrahedron
+                           (default 2; at least 1; 0 turns it off)
+  --cell-size S            largest circumradius of a tetrahedron (default: the facet size)
+  A size of 0 turns that criterion off.
+  --surface-only           mesh the surface only, even when it is closed
+  --max-steiner N          stop cleanly after inserting N points (default: no cap where
+                           refinement terminates; an automatic cap below --cell-radius-edge 2)
+Algorithm:
+  --backend auto|gpu|cpu   where to refine (default auto: GPU for large inputs when present)
+Checking and reporting:
+  --check                  validate the result: the surface a closed, oriented 2-manifold
+                           without self-intersections (for a closed input), the tetrahedra
+                           positive with the surface as their boundary, the whole Delaunay
+                           triangulation Delaunay (exact insphere); exit code 1 when invalid
+  --stats-json FILE        write the options, statistics, histograms and validation as JSON
+  -q, --quiet              no progress, warnings or summary; errors only
+  -h, --help               this text
+
+Examples:
+  gdr rdt scan.off -o scan.vtu --facet-size 0.5 --facet-distance 0.05 --check
+  gdr rdt open_scan.ply -o open_scan.vtp
+  gdr rdt part.stl -o part.mesh --cell-radius-edge 3
+
+Exit codes: 0 ok, 1 invalid mesh (--check), 2 usage error (also: an output that would
+overwrite an input), 3 input error, 4 device error, 5 internal error, 130 interrupted.
+)";
+
+struct ArgsRdt {
+  std::string input, output, stats_json;
+  RestrictedDelaunayOptions options;
+  bool check = false, quiet = false, help = false;
+};
+
+std::string extension(const std::string& path) { return std::filesystem::path(path).extension().string(); }
+
+bool surface_output(const std::string& path) {
+  const std::string ext = extension(path);
+  return ext == ".vtp" || ext == ".off";
+}
+
+// BASE_surface.vtp beside BASE.vtu.
+std::string surface_beside(const std::string& vtu) {
+  const std::filesystem::path p(vtu);
+  return (p.parent_path() / (p.stem().string() + "_surface.vtp")).string();
+}
+
+ArgsRdt parse_rdt(const std::vector<std::string>& args) {
+  const std::string cmd = "rdt";
+  ArgsRdt a;
+  auto number = [&](const char* name, double& dst) {
+    return OptionSpec{name, 0, true, [&, name](const std::string& v) {
+                        dst = parse_number(cmd, name, v);
+                        if (dst < 0) throw UsageError(cmd, std::string("--") + name + " must be >= 0");
+                      }};
+  };
+  const std::vector<OptionSpec> specs = {
+      {"output", 'o', true, [&](const std::string& v) { a.output = v; }},
+      number("facet-angle", a.options.facet_angle),
+      number("facet-size", a.options.facet_size),
+      number("facet-distance", a.options.facet_distance),
+      number("cell-radius-edge", a.options.cell_radius_edge_ratio),
+      number("cell-size", a.options.cell_size),
+      {"surface-only", 0, false, [&](const std::string&) { a.options.mesh_volume = false; }},
+      {"max-steiner", 0, true,
+       [&](const std::string& v) {
+         a.options.max_steiner_points = parse_integer(cmd, "max-steiner", v);
+         if (a.options.max_steiner_points < 0) throw UsageError(cmd, "--max-steiner must be >= 0");
+       }},
+      {"backend", 0, true, [&](const std::string& v) { a.options.backend = parse_backend(cmd, v); }},
+      {"check", 0, false, [&](const std::string&) { a.check = true; }},
+      {"stats-json", 0, true, [&](const std::string& v) { a.stats_json = v; }},
+      {"quiet", 'q', false, [&](const std::string&) { a.quiet = true; }},
+      {"help", 'h', false, [&](const std::string&) { a.help = true; }},
+  };
+  const auto positional = parse_options(cmd, args, specs);
+  if (a.help) return a;
+  a.input = single_input(cmd, positional);
+  if (!a.output.empty()) {
+    const std::string ext = extension(a.output);
+    if (ext != ".vtu" && ext != ".mesh" && !surface_output(a.output))
+      throw UsageError(cmd, "cannot tell the output format of '" + a.output + "': use .vtu, .mesh, .vtp or .off");
+    if (!a.options.mesh_volume && !surface_output(a.output))
+      throw UsageError(cmd, "--surface-only writes a surface: use .vtp or .off for -o");
+  }
+  if (a.options.facet_angle > 30)
+    throw UsageError(cmd, "--facet-angle must be at most 30 (above, refinement need not terminate)");
+  return a;
+}
+
+std::vector<OutputFile> outputs_of(const ArgsRdt& a) {
+  std::vector<OutputFile> out;
+  if (!a.output.empty()) {
+    out.push_back({a.output, "-o " + a.output});
+    if (extension(a.output) == ".vtu") out.push_back({surface_beside(a.output), "-o " + a.output});
+  }
+  if (!a.stats_json.empty()) out.push_back({a.stats_json, "--stats-json " + a.stats_json});
+  return out;
+}
+
+io::Attributes tet_arrays(const RestrictedDelaunayResult& r) {
+  io::Attributes at;
+  auto add = [&](const char* name, const auto& values, bool f32) {
+    io::DataArray d;
+    d.name = name;
+    d.values.assign(values.begin(), values.end());
+    d.float32 = f32;
+    at.cell_data.push_back(std::move(d));
+  };
+  add("RadiusEdgeRatio", r.radius_edge, true);
+  add("MinDihedralAngle", r.min_dihedral, true);
+  add("MaxDihedralAngle", r.max_dihedral, true);
+  add("Volume", r.volume, false);
+  add("IsBad", r.is_bad, true);
+  return at;
+}
+
+io::Attributes surface_arrays(const RestrictedDelaunayResult& r) {
+  io::Attributes at;
+  auto add = [&](const char* name, const auto& values, bool f32) {
+    io::DataArray d;
+    d.name = name;
+    d.values.assign(values.begin(), values.end());
+    d.float32 = f32;
+    at.cell_data.push_back(std::move(d));
+  };
+  add("MinAngle", r.facet_min_angle, true);
+  add("Size", r.facet_size, false);
+  add("Distance", r.facet_distance, false);
+  add("IsBad", r.facet_is_bad, true);
+  return at;
+}
+
+void write_outputs(const ArgsRdt& a, const RestrictedDelaunayResult& r) {
+  make_parent_dirs(a.output);
+  const std::string ext = extension(a.output);
+  if (surface_output(a.output)) {
+    io::write_surface(a.output, r.mesh, surface_arrays(r));
+  } else if (ext == ".mesh") {
+    io::write_mesh(a.output, r.mesh);
+  } else {
+    io::write_surface(surface_beside(a.output), r.mesh, surface_arrays(r));
+    io::write_mesh(a.output, r.mesh, tet_arrays(r));
+  }
+}
+
+struct Reports {
+  ValidationReport surface, tets, triangulation;
+  bool valid() const { return surface.valid && tets.valid && triangulation.valid; }
+};
+
+Reports check_mesh(const RestrictedDelaunayResult& r) {
+  Reports rep;
+  rep.surface = validate_surface(r.mesh.points, r.mesh.subfaces, r.stats.closed_input);
+  ValidateOptions vo;
+  vo.check_conformity = false;
+  if (r.stats.volume_meshed) rep.tets = validate_tetmesh(r.mesh, nullptr, vo);
+  rep.triangulation = validate_tetmesh(r.triangulation, nullptr, vo);
+  return rep;
+}
+
+void print_summary(const ArgsRdt& a, const RestrictedDelaunayResult& r, const Reports* rep, const CliTimes& t) {
+  const RestrictedDelaunayStats& s = r.stats;
+  Table info(Table::Align::Left);
+  info.row({"gdr rdt summary"});
+  info.row({"input", a.input + ": " + with_commas(s.input_points) + " points, " +
+                         with_commas(s.input_triangles) + " triangles, " +
+                         (s.closed_input ? "closed" : "open")});
+  info.row({"criteria", "facet angle " + fixed(s.facet_angle, 1) + " deg, size " + fixed(s.facet_size, 6) +
+                            ", distance " + fixed(s.facet_distance, 6) + "; cell radius-edge " +
+                            fixed(s.cell_radius_edge_ratio, 2) + ", size " + fixed(s.cell_size, 6)});
+  info.row({"output", (a.output.empty() ? std::string("(not written)") : a.output) + ": " +
+                          with_commas(s.output_points) + " points, " + with_commas(s.output_triangles) +
+                          " surface triangles, " + with_commas(s.output_tets) + " tetrahedra"});
+  info.row({"points inserted", with_commas(s.steiner_points) + " (" + with_commas(s.initial_points) +
+                                   " initial) in " + std::to_string(s.iterations) + " iterations"});
+  if (s.steiner_cap_reached) info.row({"", "stopped at the cap of " + with_commas(s.steiner_cap)});
+  if (s.stalled) info.row({"", "stalled: bad elements remain that no point could fix"});
+  info.row({"backend", backend_line(s.backend_used, s.device_name)});
+  info.row({"surface", "min angle " + fixed(s.min_facet_angle_deg, 2) + " deg, max size " +
+                           fixed(s.max_facet_size, 6) + ", max distance " + fixed(s.max_facet_distance, 6) +
+                           ", area " + fixed(s.area, 6) + ", " + with_commas(s.bad_facets) + " bad"});
+  if (s.volume_meshed)
+    info.row({"tetrahedra", "dihedral " + fixed(s.min_dihedral_deg, 2) + ".." + fixed(s.max_dihedral_deg, 2) +
+                                " deg, max radius-edge " + fixed(s.max_radius_edge, 3) + ", volume " +
+                                fixed(s.volume, 6) + ", " + with_commas(s.bad_tets) + " bad"});
+  if (rep) {
+    info.row({"check surface", (rep->surface.valid ? "valid: " : "INVALID: ") + rep->surface.summary()});
+    if (s.volume_meshed)
+      info.row({"check tetrahedra", (rep->tets.valid ? "valid: " : "INVALID: ") + rep->tets.summary()});
+    info.row({"check Delaunay", (rep->triangulation.valid ? "valid: " : "INVALID: ") +
+                                    with_commas(static_cast<long long>(r.triangulation.tets.size())) +
+                                    " tetrahedra of the whole triangulation, " +
+                                    std::to_string(rep->triangulation.non_delaunay) + " faces not locally Delaunay"});
+  }
+  info.print(std::cout);
+  Table times;
+  times.row({"time", "seconds"});
+  times.row({"  input checks", fixed(s.input_seconds, 3)});
+  times.row({"  initial triangulation", fixed(s.initial_seconds, 3)});
+  times.row({"  refinement", fixed(s.refine_seconds, 3)});
+  for (const auto& p : s.phases) times.row({"    " + p.name, fixed(p.seconds, 3)});
+  times.row({"  output mesh", fixed(s.output_seconds, 3)});
+  times.row({"  read input", fixed(t.read, 3)});
+  if (!a.output.empty()) times.row({"  write output", fixed(t.write, 3)});
+  if (rep) times.row({"  check", fixed(t.check, 3)});
+  times.row({"  wall clock", fixed(t.wall, 3)});
+  times.print(std::cout);
+  std::cout.flush();
+}
+
+void write_stats_json(const ArgsRdt& a, const RestrictedDelaunayResult& r, const Reports* rep, const CliTimes& t) {
+  std::ostringstream out;
+  const RestrictedDelaunayStats& s = r.stats;
+  JsonWriter j(out);
+  j.begin_object();
+  j.field("tool", "gdr rdt");
+  j.field("input", a.input);
+  j.field("output", a.output);
+  j.key("options");
+  j.begin_object();
+  j.field("facet_angle", s.facet_angle);
+  j.field("facet_size", s.facet_size);
+  j.field("facet_distance", s.facet_distance);
+  j.field("cell_radius_edge_ratio", s.cell_radius_edge_ratio);
+  j.field("cell_size", s.cell_size);
+  j.field("mesh_volume", a.options.mesh_volume);
+  j.field("max_steiner_points", a.options.max_steiner_points);
+  j.field("backend", to_string(a.options.backend));
+  j.end_object();
+  j.key("stats");
+  j.begin_object();
+  j.field("backend_used", to_string(s.backend_used));
+  j.field("device_name", s.device_name);
+  j.field("closed_input", s.closed_input);
+  j.field("volume_meshed", s.volume_meshed);
+  j.field("iterations", s.iterations);
+  j.field("input_points", s.input_points);
+  j.field("input_triangles", s.input_triangles);
+  j.field("initial_points", s.initial_points);
+  j.field("steiner_points", s.steiner_points);
+  j.field("triangulation_points", s.triangulation_points);
+  j.field("triangulation_tets", s.triangulation_tets);
+  j.field("output_points", s.output_points);
+  j.field("output_triangles", s.output_triangles);
+  j.field("output_tets", s.output_tets);
+  j.field("bad_facets", s.bad_facets);
+  j.field("bad_tets", s.bad_tets);
+  j.field("steiner_cap", s.steiner_cap);
+  j.field("steiner_cap_reached", s.steiner_cap_reached);
+  j.field("stalled", s.stalled);
+  j.field("min_facet_angle_deg", s.min_facet_angle_deg);
+  j.field("max_facet_size", s.max_facet_size);
+  j.field("max_facet_distance", s.max_facet_distance);
+  j.field("min_dihedral_deg", s.min_dihedral_deg);
+  j.field("max_dihedral_deg", s.max_dihedral_deg);
+  j.field("max_radius_edge", s.max_radius_edge);
+  j.field("area", s.area);
+  j.field("volume", s.volume);
+  j.field("input_seconds", s.input_seconds);
+  j.field("initial_seconds", s.initial_seconds);
+  j.field("refine_seconds", s.refine_seconds);
+  j.field("output_seconds", s.output_seconds);
+  j.field("total_seconds", s.total_seconds);
+  j.field("peak_device_bytes", static_cast<unsigned long long>(s.peak_device_bytes));
+  j.key("phases");
+  j.begin_array();
+  for (const auto& p : s.phases) {
+    j.begin_object();
+    j.field("name", p.name);
+    j.field("seconds", p.seconds);
+    j.end_object();
+  }
+  j.end_array();
+  j.end_object();
+  j.key("dihedral_histogram");  // 1-degree bins over [0, 180)
+  j.begin_array();
+  for (const long long c : r.dihedral_histogram) j.value(c);
+  j.end_array();
+  j.key("facet_angle_histogram");  // smallest angle per surface triangle, 1-degree bins over [0, 60]
+  j.begin_array();
+  for (const long long c : r.facet_angle_histogram) j.value(c);
+  j.end_array();
+  j.key("cli_seconds");
+  j.begin_object();
+  j.field("read", t.read);
+  j.field("write", t.write);
+  j.field("check", t.check);
+  j.field("wall", t.wall);
+  j.end_object();
+  j.key("validation");
+  if (!rep) {
+    j.null();
+  } else {
+    j.begin_object();
+    j.field("valid", rep->valid());
+    j.field("surface", rep->surface.summary());
+    j.field("tetrahedra", s.volume_meshed ? rep->tets.summary() : std::string());
+    j.field("non_delaunay", static_cast<unsigned long long>(rep->triangulation.non_delaunay));
+    j.end_object();
+  }
+  j.end_object();
+  make_parent_dirs(a.stats_json);
+  io::write_file_atomically(a.stats_json, out.str());
+}
+
+Surface read_input(const std::string& path) {
+  if (!std::filesystem::exists(path)) throw Error(Status::IoError, path + ": no such file");
+  if (io::detect_input_kind(path) != io::InputKind::Surface3d)
+    throw Error(Status::InvalidInput, path + ": is a 2D planar straight-line graph; 'gdr rdt' needs a 3D surface");
+  return io::read_surface(path);
+}
+
+int mesh_rdt(const ArgsRdt& a, bool& written) {
+  const auto t_start = std::chrono::steady_clock::now();
+  CliTimes t;
+  ProgressBar bar(!a.quiet);
+  bar.update(-1, "reading " + a.input);
+  auto t0 = std::chrono::steady_clock::now();
+  const Surface input = read_input(a.input);
+  t.read = since(t0);
+  stop_if_interrupted();
+
+  Callbacks callbacks;
+  callbacks.progress = [&bar](double f, const std::string& phase) { bar.update(f, phase); };
+  if (!a.quiet) callbacks.warning = [&bar](const std::string& m) { bar.message("gdr: warning: " + m); };
+  callbacks.abort = [] { return InterruptHandler::received() != 0; };
+  RestrictedDelaunayOptions options = a.options;
+  options.keep_triangulation = a.check;
+  const RestrictedDelaunayResult result = restricted_delaunay_3d(input, options, callbacks);
+  stop_if_interrupted();
+  if (!a.output.empty() && !surface_output(a.output) && !result.stats.volume_meshed)
+    throw Error(Status::InvalidInput, "the surface is open: only a surface can be written; use .vtp or .off for -o");
+
+  if (!a.output.empty()) {
+    bar.update(-1, "writing " + a.output);
+    t0 = std::chrono::steady_clock::now();
+    write_outputs(a, result);
+    written = true;
+    t.write = since(t0);
+    stop_if_interrupted();
+  }
+  Reports reports;
+  if (a.check) {
+    bar.update(-1, "checking the mesh");
+    t0 = std::chrono::steady_clock::now();
+    reports = check_mesh(result);
+    t.check = since(t0);
+  }
+  t.wall = since(t_start);
+  bar.finish();
+  const Reports* rep = a.check ? &reports : nullptr;
+  if (!a.stats_json.empty()) write_stats_json(a, result, rep, t);
+  if (!a.quiet) print_summary(a, result, rep, t);
+  if (a.check && !reports.valid()) {
+    std::fprintf(stderr, "gdr: error: the mesh is invalid\n");
+    for (const ValidationReport* r : {&reports.surface, &reports.tets, &reports.triangulation})
+      for (const auto& p : r->problems) std::fprintf(stderr, "  %s\n", p.c_str());
+    return kExitInvalidMesh;
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+int run_rdt(const std::vector<std::string>& args) {
+  const ArgsRdt a = parse_rdt(args);
+  if (a.help) {
+    std::fputs(kHelpRdt, stdout);
+    return kExitOk;
+  }
+  refuse_overwrites("rdt", a.input, io::surface_input_files(a.input), outputs_of(a));
+  return run_interruptible(a.output, [&a](bool& written) { return mesh_rdt(a, written); });
+}
+
+}  // namespace gdr::cli
