@@ -14,6 +14,7 @@
 #include "cdt3d/cdt3d.h"
 #include "gdr/qm3d.h"
 #include "gdr/validate.h"
+#include "mesh3d/scale.h"
 #include "qm3d/engine_dispatch.h"
 #include "qm3d/features.h"
 
@@ -111,33 +112,6 @@ long long automatic_steiner_cap(const m3d::HostTetMesh& m, std::size_t estimated
       std::max({200.0 * m.points(), 1e6, 2.0 * static_cast<double>(estimated)}));
 }
 
-// Exact rescaling: the input is multiplied by a power of two that brings its largest
-// coordinate into [1, 2), so that the predicates' expansions neither overflow nor underflow
-// whatever units the input uses (multiplying by 2^k is exact), and the output is scaled back.
-struct PowerOfTwoScale {
-  int k = 0;
-  explicit PowerOfTwoScale(const Surface& s) {
-    double m = 0;
-    for (const Point3& p : s.points)
-      m = std::max({m, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
-    if (m > 0 && std::isfinite(m)) k = -std::ilogb(m);
-  }
-  Point3 apply(const Point3& p, int sign) const {
-    return {std::ldexp(p.x, sign * k), std::ldexp(p.y, sign * k), std::ldexp(p.z, sign * k)};
-  }
-  double volume(double v, int sign) const { return std::ldexp(v, 3 * sign * k); }
-  Surface scaled(const Surface& s) const {
-    Surface out = s;
-    for (Point3& p : out.points) p = apply(p, 1);
-    for (Point3& p : out.holes) p = apply(p, 1);
-    for (RegionSeed& r : out.regions) {
-      r.point = apply(r.point, 1);
-      r.max_volume = volume(r.max_volume, 1);
-    }
-    return out;
-  }
-};
-
 }  // namespace
 
 void validate_quality_tet_input(const Surface& input, const QualityTetOptions& o) {
@@ -157,7 +131,7 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
                                   const Callbacks& cb) {
   const auto t_start = Clock::now();
   validate_quality_tet_input(unscaled, user_options);
-  const PowerOfTwoScale scale(unscaled);
+  const m3d::PowerOfTwoScale scale(unscaled);
   const Surface input = scale.scaled(unscaled);
   QualityTetOptions options = user_options;
   options.max_volume = scale.volume(options.max_volume, 1);
