@@ -17,6 +17,7 @@
 #include "cdt3d/internal.h"
 #include "gdr/rdt3d.h"
 #include "gdr/validate.h"
+#include "mesh3d/scale.h"
 #include "rdt3d/engine_dispatch.h"
 
 namespace gdr {
@@ -93,10 +94,16 @@ void validate_restricted_delaunay_options(const RestrictedDelaunayOptions& o) {
     bad("at least one facet criterion (angle, size or distance) is needed");
 }
 
-RestrictedDelaunayResult restricted_delaunay_3d(const Surface& input, const RestrictedDelaunayOptions& options,
+RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const RestrictedDelaunayOptions& user_options,
                                                 const Callbacks& cb) {
   const auto t_start = Clock::now();
-  validate_restricted_delaunay_options(options);
+  validate_restricted_delaunay_options(user_options);
+  // Meshed at a power-of-two scale (exact) where the predicates cannot overflow or underflow.
+  const m3d::PowerOfTwoScale scale(unscaled);
+  const Surface input = scale.scaled(unscaled);
+  RestrictedDelaunayOptions options = user_options;
+  for (double* size : {&options.facet_size, &options.facet_distance, &options.cell_size})
+    if (*size > 0) *size = scale.length(*size, 1);
   RestrictedDelaunayResult result;
   RestrictedDelaunayStats& st = result.stats;
   auto aborted = [&] { return cb.abort && cb.abort(); };
@@ -379,6 +386,16 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& input, const Rest
     all.tets.resize(m.ntet);
     for (int t = 0; t < m.ntet; ++t) all.tets[t] = {m.tv[4 * t], m.tv[4 * t + 1], m.tv[4 * t + 2], m.tv[4 * t + 3]};
   }
+  // Back to the input's scale.
+  for (Point3& p : tm.points) p = scale.apply(p, -1);
+  for (Point3& p : result.triangulation.points) p = scale.apply(p, -1);
+  for (double& v : result.volume) v = scale.volume(v, -1);
+  for (double& v : result.facet_size) v = scale.length(v, -1);
+  for (double& v : result.facet_distance) v = scale.length(v, -1);
+  st.volume = scale.volume(st.volume, -1);
+  st.area = scale.area(st.area, -1);
+  for (double* v : {&st.max_facet_size, &st.max_facet_distance, &st.facet_size, &st.facet_distance, &st.cell_size})
+    *v = scale.length(*v, -1);
   st.output_points = static_cast<long long>(tm.points.size());
   st.output_tets = static_cast<long long>(tm.tets.size());
   if (st.stalled && cb.warning)

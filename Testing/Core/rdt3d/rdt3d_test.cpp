@@ -259,6 +259,24 @@ TEST(RestrictedDelaunay, SurfaceOnlyOfAClosedSurface) {
   expect_valid(r, s, true, false);
 }
 
+// Tiny and huge coordinates: meshed at a power-of-two scale, so the same mesh comes out
+// (scaled exactly) and every check holds.
+TEST(RestrictedDelaunay, TinyAndHugeCoordinates) {
+  const Surface unit = test::icosphere(3);
+  const RestrictedDelaunayResult ref = restricted_delaunay_3d(unit, sizes(0.4, 0.04, 0.4), {});
+  for (const int e : {-200, 200}) {
+    SCOPED_TRACE("scale 2^" + std::to_string(e));
+    Surface s = unit;
+    for (Point3& p : s.points) p = {std::ldexp(p.x, e), std::ldexp(p.y, e), std::ldexp(p.z, e)};
+    const double h = std::ldexp(0.4, e);
+    const RestrictedDelaunayResult r = restricted_delaunay_3d(s, sizes(h, h / 10, h), {});
+    expect_valid(r, s, true, true);
+    EXPECT_EQ(r.mesh.tets.size(), ref.mesh.tets.size());
+    EXPECT_EQ(r.mesh.subfaces.size(), ref.mesh.subfaces.size());
+    EXPECT_DOUBLE_EQ(r.stats.volume, std::ldexp(ref.stats.volume, 3 * e));
+  }
+}
+
 TEST(RestrictedDelaunay, RefusesWhatCannotTerminate) {
   const Surface s = test::icosphere(2);
   RestrictedDelaunayOptions o;
