@@ -68,6 +68,9 @@ struct TriMesh {
   // Subsegments: mesh edges lying on input segments, with the input segment they belong to.
   std::vector<std::array<int, 2>> subsegments;
   std::vector<int> subsegment_source;       // index into the input segments, or -1 for hull edges
+  // Input segments (ascending) left out because they border only removed regions (holes, or
+  // the exterior): the validator expects no subsegment of them.
+  std::vector<int> removed_segments;
   // The number of the first point in Triangle files written from the mesh (the input's own
   // numbering, 0 or 1, as Triangle writes its output).
   int first_index = 0;

@@ -293,6 +293,45 @@ struct PowerOfTwoScale {
   }
 };
 
+// Input segments with no subsegment left border only removed regions: a hole seed on a
+// segment or vertex, hole rings inside a hole, or, with remove_exterior, a chain left open
+// (the exterior floods through the gap and takes what the chain was to enclose). They are
+// listed in the mesh (for the validator) and said, the first few numbered as in the input
+// file, instead of dropped silently.
+void note_removed_segments(const r2d::CleanPslg& pslg, TriMesh& out, std::size_t inputs,
+                           bool remove_exterior, const Callbacks& cb) {
+  std::vector<char> kept(inputs, 0), present(inputs, 0);
+  for (const int o : pslg.segment_origin) present[o] = 1;
+  for (const int o : out.subsegment_source)
+    if (o >= 0) kept[o] = 1;
+  std::string list;
+  out.removed_segments.clear();
+  for (std::size_t s = 0; s < inputs; ++s)
+    if (present[s] && !kept[s]) {
+      if (out.removed_segments.size() < 5)
+        list += (list.empty() ? "" : ", ") + std::to_string(s + pslg.first_index);
+      out.removed_segments.push_back(static_cast<int>(s));
+    }
+  const std::size_t count = out.removed_segments.size();
+  if (!count || !cb.warning) return;
+  // With the exterior removed, the ends of open chains (points on one segment) are named.
+  std::string ends;
+  long long open = 0;
+  if (remove_exterior) {
+    std::vector<int> degree(pslg.points.size(), 0);
+    for (const auto& sg : pslg.segments) ++degree[sg[0]], ++degree[sg[1]];
+    for (std::size_t v = 0; v < degree.size(); ++v)
+      if (degree[v] == 1 && pslg.point_origin[v] >= 0 && open++ < 5)
+        ends += (ends.empty() ? "" : ", ") + std::to_string(pslg.point_origin[v] + pslg.first_index);
+  }
+  cb.warning(std::to_string(count) + " input segment(s) border only removed regions and are not in the mesh (segment " +
+             list + (count > 5 ? ", ..." : "") + "): " +
+             (open ? std::to_string(open) + " segment chain end(s) are open (point " + ends +
+                         (open > 5 ? ", ..." : "") +
+                         "), and the exterior floods through the gaps: close the chains"
+                   : "a hole seed on a segment or vertex, a hole ring inside a hole, or, with the exterior removed, a boundary chain that is not closed"));
+}
+
 }  // namespace
 
 Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_options,
@@ -419,6 +458,7 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
     out.subsegments[k] = {mesh_out.subseg[3 * k], mesh_out.subseg[3 * k + 1]};
     out.subsegment_source[k] = s < mesh.input_segments ? pslg.segment_origin[s] : -1;
   }
+  note_removed_segments(pslg, out, unscaled.segments.size(), options.remove_exterior, cb);
   r2d::carry_input_data(input, pslg, mesh_out.xy.data(),
                         mesh_out.tregion.empty() ? nullptr : mesh_out.tregion.data(),
                         options.region_attributes, out);

@@ -234,7 +234,9 @@ ValidationReport validate_trimesh(const TriMesh& mesh, const Pslg* input,
       // (A segment given twice, or overlapping another, is sourced to one of them only.)
       else if (a != b)
         seg_ok[s] = (sourced && follow_sourced_chain(P, chains[s], a, b, options.segment_tolerance, extent)) ||
-                    validate::follow_segment(P, graph, a, b, options.segment_tolerance);
+                    validate::follow_segment(P, graph, a, b, options.segment_tolerance) ||
+                    (sourced && chains[s].empty() &&
+                     std::binary_search(mesh.removed_segments.begin(), mesh.removed_segments.end(), int(s)));
     }
     for (std::size_t s = 0; s < S.size(); ++s) {
       if (seg_ok[s]) continue;

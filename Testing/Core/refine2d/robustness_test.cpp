@@ -198,3 +198,39 @@ TEST(Refine2dScale, ConformityFollowsTheSubsegmentStructure) {
 }
 
 }  // namespace
+
+namespace {
+
+// Segments that border only removed regions (a hole ring inside a hole; an open chain with
+// the exterior removed) are said while meshing, listed in the mesh, and not reported missing.
+TEST(Refine2dRemoved, SegmentsBorderingOnlyRemovedRegionsAreSaidAndAccepted) {
+  Pslg nested;
+  add_loop(nested, {{0, 0}, {4, 0}, {4, 4}, {0, 4}});
+  add_loop(nested, {{1, 1}, {3, 1}, {3, 3}, {1, 3}});
+  add_loop(nested, {{1.5, 1.5}, {2.5, 1.5}, {2.5, 2.5}, {1.5, 2.5}});
+  nested.holes = {{1.2, 1.2}, {2, 2}};
+  Pslg open;
+  open.points = {{0, 0}, {4, 0}, {4, 4}, {0, 4}, {1, 1}, {3, 1}, {3, 3}, {1, 3}};
+  open.segments = {{0, 1}, {1, 2}, {2, 3}, {4, 5}, {5, 6}, {6, 7}, {7, 4}};  // 3-0 missing
+  for (const Pslg* g : {&nested, &open}) {
+    auto o = cpu(20);
+    o.remove_exterior = true;
+    std::string said;
+    gdr::Callbacks cb;
+    cb.warning = [&](const std::string& w) { said += w; };
+    const gdr::Refine2dResult r = gdr::refine_2d(*g, o, cb);
+    const std::vector<int> expected =
+        g == &nested ? std::vector<int>{8, 9, 10, 11} : std::vector<int>{0, 1, 2};
+    EXPECT_EQ(r.mesh.removed_segments, expected);
+    EXPECT_NE(said.find(std::to_string(expected.size()) + " input segment(s) border only removed"),
+              std::string::npos) << said;
+    if (g == &open) EXPECT_NE(said.find("open (point 0, 3)"), std::string::npos) << said;
+    const gdr::ValidationReport v = gdr::validate_trimesh(r.mesh, g);
+    EXPECT_TRUE(v.valid) << v.summary();
+    gdr::TriMesh unlisted = r.mesh;  // without the list they are missing
+    unlisted.removed_segments.clear();
+    EXPECT_EQ(gdr::validate_trimesh(unlisted, g).missing_segments, expected.size());
+  }
+}
+
+}  // namespace
