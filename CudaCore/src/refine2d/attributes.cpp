@@ -1,7 +1,6 @@
 // What Triangle's output carries besides the mesh: boundary markers, point attributes and
 // regional attributes, carried from the input to the refined mesh (input.h).
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <limits>
 
@@ -9,35 +8,6 @@
 
 namespace gdr::r2d {
 namespace {
-
-long long edge_key(int a, int b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<long long>(a) << 32) | static_cast<unsigned>(b);
-}
-
-// How many triangles hold each subsegment: 1 on the mesh boundary, 2 inside.
-std::vector<int> triangles_at_subsegments(const TriMesh& m) {
-  const std::size_t ns = m.subsegments.size();
-  std::vector<std::pair<long long, int>> keys(ns);
-  for (std::size_t k = 0; k < ns; ++k) keys[k] = {edge_key(m.subsegments[k][0], m.subsegments[k][1]), int(k)};
-  std::sort(keys.begin(), keys.end());
-  std::vector<std::atomic<int>> count(ns);
-  for (auto& c : count) c.store(0, std::memory_order_relaxed);
-  const long long nt = static_cast<long long>(m.triangles.size());
-#pragma omp parallel for schedule(static)
-  for (long long t = 0; t < nt; ++t)
-    for (int e = 0; e < 3; ++e) {
-      const int a = m.triangles[t][e], b = m.triangles[t][(e + 1) % 3];
-      // Only points on segments end subsegments.
-      if (m.point_type[a] == PointType::Free || m.point_type[b] == PointType::Free) continue;
-      const long long k = edge_key(a, b);
-      const auto it = std::lower_bound(keys.begin(), keys.end(), std::make_pair(k, -1));
-      if (it != keys.end() && it->first == k) count[it->second].fetch_add(1, std::memory_order_relaxed);
-    }
-  std::vector<int> out(ns);
-  for (std::size_t k = 0; k < ns; ++k) out[k] = count[k].load(std::memory_order_relaxed);
-  return out;
-}
 
 // Where a point added by splitting lies along the input segment s, in [0, 1].
 double along(const Pslg& in, int s, const Point2& p) {
@@ -48,19 +18,18 @@ double along(const Pslg& in, int s, const Point2& p) {
 
 }  // namespace
 
-void carry_input_data(const Pslg& in, const CleanPslg& g, const double* xy, const int* tregion,
-                      bool region_attributes, TriMesh& out) {
+void carry_input_data(const Pslg& in, const CleanPslg& g, const double* xy, const int* subseg,
+                      const int* tregion, bool region_attributes, TriMesh& out) {
   const std::size_t np = out.points.size(), nclean = g.points.size();
   const bool point_marked = in.point_markers.size() == in.points.size();
   const bool segment_marked = in.segment_markers.size() == in.segments.size();
 
   // Markers, as Triangle assigns them.
-  const std::vector<int> at = triangles_at_subsegments(out);
   out.subsegment_markers.resize(out.subsegments.size());
   for (std::size_t k = 0; k < out.subsegments.size(); ++k) {
     const int s = out.subsegment_source[k];
     const int marker = s >= 0 && segment_marked ? in.segment_markers[s] : 0;
-    out.subsegment_markers[k] = marker == 0 && at[k] == 1 ? 1 : marker;
+    out.subsegment_markers[k] = marker == 0 && subseg[4 * k + 3] ? 1 : marker;
   }
   out.point_markers.assign(np, 0);
   if (point_marked)

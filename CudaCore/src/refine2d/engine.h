@@ -433,10 +433,10 @@ struct Engine {
       cnt[t] = n;
     });
     const std::size_t nsub = static_cast<std::size_t>(Ops::exclusive_scan(cnt, cnt, dm.ntri));
-    work.resize_discard(3 * nsub);
+    work.resize_discard(4 * nsub);
     int* sub = work.data();
     Ops::for_each(dm.ntri, [=] GDR_HD(long long t) {
-      int o = 3 * cnt[t];
+      int o = 4 * cnt[t];
       for (int i = 0; i < 3; ++i) {
         const int nb = mv.tn[3 * t + i];
         if (!is_subseg(mv, static_cast<int>(t), i) || (nb >= 0 && nb < 3 * t + i)) continue;
@@ -444,6 +444,7 @@ struct Engine {
         sub[o++] = a;
         sub[o++] = b;
         sub[o++] = segment_of(mv, a, b);
+        sub[o++] = nb < 0;  // on the mesh boundary: one triangle
       }
     });
     stamp("subsegment list");

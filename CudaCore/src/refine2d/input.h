@@ -48,9 +48,11 @@ std::vector<double> interpolate_over_cdt(const CleanPslg& g, const std::vector<d
 // that is 0 or absent, 0 inside) and of points (their own, else that of a marked subsegment
 // they end), point attributes (interpolated at Steiner points), and with `region_attributes`
 // the attribute of each triangle's region (`tregion`: region numbers, 0 for none; null
-// without regions). `xy` are the engine's coordinates of out's points (2 per point).
-void carry_input_data(const Pslg& in, const CleanPslg& g, const double* xy, const int* tregion,
-                      bool region_attributes, TriMesh& out);
+// without regions). `xy` are the engine's coordinates of out's points (2 per point),
+// `subseg` its subsegments (MeshResult::subseg: 4 per subsegment, the 4th 1 on the mesh
+// boundary), in the order of out.subsegments.
+void carry_input_data(const Pslg& in, const CleanPslg& g, const double* xy, const int* subseg,
+                      const int* tregion, bool region_attributes, TriMesh& out);
 
 // Pairs of segments that cross, touch or overlap (exact predicates), at most `limit`.
 struct SegmentConflict {

@@ -54,7 +54,8 @@ struct MeshResult {
   exec::HostVector<double> xy;           // 2 per point
   exec::HostVector<std::uint8_t> ptype;  // per point
   exec::HostVector<int> tv;              // 3 per triangle
-  exec::HostVector<int> subseg;          // 3 per subsegment: its two vertices and its segment
+  exec::HostVector<int> subseg;          // 4 per subsegment: its two vertices, its segment,
+                                         // and 1 on the mesh boundary (one triangle), else 0
   exec::HostVector<int> bad;             // triangles left bad: 2t, or 2t+1 where the
                                          // small-input-angle rule protects them
   exec::HostVector<int> tregion;         // per triangle: region number (empty: no regions)

@@ -450,16 +450,16 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
 #pragma omp parallel for
   for (int t = 0; t < nt; ++t)
     out.triangles[t] = {mesh_out.tv[3 * t], mesh_out.tv[3 * t + 1], mesh_out.tv[3 * t + 2]};
-  const std::size_t nsub = mesh_out.subseg.size() / 3;
+  const std::size_t nsub = mesh_out.subseg.size() / 4;
   out.subsegments.resize(nsub);
   out.subsegment_source.resize(nsub);
   for (std::size_t k = 0; k < nsub; ++k) {
-    const int s = mesh_out.subseg[3 * k + 2];
-    out.subsegments[k] = {mesh_out.subseg[3 * k], mesh_out.subseg[3 * k + 1]};
+    const int s = mesh_out.subseg[4 * k + 2];
+    out.subsegments[k] = {mesh_out.subseg[4 * k], mesh_out.subseg[4 * k + 1]};
     out.subsegment_source[k] = s < mesh.input_segments ? pslg.segment_origin[s] : -1;
   }
   note_removed_segments(pslg, out, unscaled.segments.size(), options.remove_exterior, cb);
-  r2d::carry_input_data(input, pslg, mesh_out.xy.data(),
+  r2d::carry_input_data(input, pslg, mesh_out.xy.data(), mesh_out.subseg.data(),
                         mesh_out.tregion.empty() ? nullptr : mesh_out.tregion.data(),
                         options.region_attributes, out);
 
