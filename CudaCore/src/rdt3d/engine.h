@@ -159,12 +159,12 @@ struct Engine {
 
   std::size_t collect() {
     auto& dm = core.dm;
-    Ops::for_each(dm.ntet, CountBad{dm.view(), tree, params.criteria});
+    Ops::for_each(dm.ntet, CountBad{dm.view(), params.criteria});
     int* cnt = dm.aux.data();
     const std::size_t nl = static_cast<std::size_t>(Ops::exclusive_scan(cnt, cnt, dm.ntet));
     core.list.resize_discard(nl);
     if (nl)
-      Ops::for_each(dm.ntet, ListBad{dm.view(), tree, params.criteria, core.list.data(), static_cast<int>(nl)});
+      Ops::for_each(dm.ntet, ListBad{dm.view(), params.criteria, core.list.data(), static_cast<int>(nl)});
     core.clock.template stop<Space>("collect");
     return nl;
   }

@@ -37,6 +37,7 @@ enum : int {
   kRestricted0 = 1 << m3d::kCollectShift,  // bits 19-22: face i is a restricted facet
   kRestrictedBits = 15 << m3d::kCollectShift,
   kInterior = 1 << (m3d::kCollectShift + 4),  // the circumcentre lies inside the surface
+  kBadFacet0 = 1 << (m3d::kCollectShift + 5),  // bits 24-27: restricted face i fails a criterion
 };
 
 // Candidate::a of a point on the surface (a free point otherwise, a = -1): its point type is
@@ -73,12 +74,6 @@ GDR_HD_INLINE bool dual_segment(const TetView& m, const Criteria& c, int t, int 
   if (!(len > 0)) return false;
   for (int k = 0; k < 3; ++k) q[k] = p[k] + c.reach * n[k] / len;
   return true;
-}
-
-GDR_HD_INLINE bool restricted_face(const TetView& m, const AabbView& s, const Criteria& c, int t, int f) {
-  double p[3], q[3];
-  if (!dual_segment(m, c, t, f, p, q)) return false;
-  return segment_meets_surface(s, p, q);
 }
 
 // The surface centre x of restricted face f of t (where its dual meets the surface; of
@@ -178,9 +173,10 @@ GDR_HD_INLINE int classify_cell(const TetView& m, const Criteria& c, int t, cons
 
 // ---------------------------------------------------------------------------------------
 // Reclassification of new tetrahedra (those flagged kFresh by insertion): whether each face
-// is restricted, set on both of its sides, and whether the tetrahedron lies inside the
-// surface. A face between two new tetrahedra is decided by the lesser one. ClearFresh runs
-// after, so that every thread sees the same fresh flags.
+// is restricted and whether it fails a facet criterion, set on both of its sides (neither
+// changes while the two tetrahedra live: the collect phase only reads the bits), and whether
+// the tetrahedron lies inside the surface. A face between two new tetrahedra is decided by
+// the lesser one. ClearFresh runs after, so that every thread sees the same fresh flags.
 struct ClassifyFresh {
   TetView m;
   AabbView s;
@@ -193,9 +189,16 @@ struct ClassifyFresh {
       const int nb = m.tn[4 * t + f];
       const int u = nb >> 2;
       if (nb >= 0 && (m.tflag[u] & m3d::kFresh) && u < t) continue;
-      const bool r = restricted_face(m, s, c, t, f);
+      double x[3];
+      int tri;
+      const bool r = surface_centre(m, s, c, t, f, x, &tri);
+      const bool bad = r && facet_is_bad(m, c, t, f, x);
       set_bit(t, kRestricted0 << f, r);
-      if (nb >= 0) set_bit(u, kRestricted0 << (nb & 3), r);
+      set_bit(t, kBadFacet0 << f, bad);
+      if (nb >= 0) {
+        set_bit(u, kRestricted0 << (nb & 3), r);
+        set_bit(u, kBadFacet0 << (nb & 3), bad);
+      }
     }
     bool inside = false;
     if (c.volume) {
@@ -218,10 +221,11 @@ struct ClearFresh {
 // ---------------------------------------------------------------------------------------
 // Collect (S4: one list): bad restricted facets and bad tetrahedra inside the surface, as
 // 8t + slot (slot f < 4: face f; slot 4: the tetrahedron). The count per tetrahedron goes to
-// aux, which the engine scans in place into list offsets.
+// aux, which the engine scans in place into list offsets. Facets are read off the bits
+// ClassifyFresh keeps.
 enum : int { kSlotCell = 4 };
 
-GDR_HD_INLINE int collect_mask(const TetView& m, const AabbView& s, const Criteria& c, int t) {
+GDR_HD_INLINE int collect_mask(const TetView& m, const Criteria& c, int t) {
   const int flags = m.tflag[t];
   if (flags & m3d::kDead) return 0;
   int mask = 0;
@@ -231,10 +235,7 @@ GDR_HD_INLINE int collect_mask(const TetView& m, const AabbView& s, const Criter
       mask |= 1 << f;
       continue;
     }
-    if (!owns_face(m, t, f)) continue;
-    double x[3];
-    int tri;
-    if (surface_centre(m, s, c, t, f, x, &tri) && facet_is_bad(m, c, t, f, x)) mask |= 1 << f;
+    if ((flags & (kBadFacet0 << f)) && owns_face(m, t, f)) mask |= 1 << f;
   }
   if (c.volume && (flags & kInterior)) {
     const TetSize sz = tet_size(m, t);
@@ -245,10 +246,9 @@ GDR_HD_INLINE int collect_mask(const TetView& m, const AabbView& s, const Criter
 
 struct CountBad {
   TetView m;
-  AabbView s;
   Criteria c;
   GDR_HD void operator()(long long i) const {
-    const int mask = collect_mask(m, s, c, static_cast<int>(i));
+    const int mask = collect_mask(m, c, static_cast<int>(i));
     int n = 0;
     for (int k = 0; k < 5; ++k) n += (mask >> k) & 1;
     m.aux[i] = n;
@@ -257,7 +257,6 @@ struct CountBad {
 
 struct ListBad {
   TetView m;
-  AabbView s;
   Criteria c;
   int* list;
   int total;  // entries in the list
@@ -265,7 +264,7 @@ struct ListBad {
     const int t = static_cast<int>(i);
     const int next = t + 1 < m.ntet ? m.aux[t + 1] : total;
     if (next == m.aux[t]) return;  // nothing listed here (the scan did not step)
-    const int mask = collect_mask(m, s, c, t);
+    const int mask = collect_mask(m, c, t);
     int o = m.aux[t];
     for (int k = 0; k < 5; ++k)
       if (mask & (1 << k)) list[o++] = 8 * t + k;
