@@ -84,6 +84,8 @@ Algorithm:
                           --split-intersections, the old name of the default, is accepted
   --cdt-only              only the constrained Delaunay triangulation, no refinement
   --backend auto|gpu|cpu  where to refine (default auto: GPU for large inputs when present)
+  --deterministic         the same mesh on every run of the same input and options: the
+                          CPU backend on one thread (README "Reproducibility")
 Checking and reporting:
   --check                 validate the result (conformity, constrained Delaunay, quality);
                           exit code 1 when the mesh is invalid
@@ -146,6 +148,7 @@ Args2d parse_2d(const std::vector<std::string>& args) {
          else throw UsageError(cmd, "--mode must be 'ruppert' or 'chew', got '" + v + "'");
        }},
       {"off-centers", 0, false, [&](const std::string&) { a.options.off_centers = true; }},
+      {"deterministic", 0, false, [&](const std::string&) { a.options.deterministic = true; }},
       {"remove-exterior", 0, false, [&](const std::string&) { a.options.remove_exterior = true; }},
       {"strict", 0, false, [&](const std::string&) { a.options.strict_input = true; }},
       {"split-intersections", 0, false, [&](const std::string&) { a.options.strict_input = false; }},
@@ -211,7 +214,8 @@ void print_summary(const Args2d& a, const Pslg& input, const Refine2dResult& r,
     info.row({"", std::string("stopped at the ") + (s.automatic_steiner_cap ? "automatic " : "") +
                       "cap of " + with_commas(s.steiner_cap)});
   if (s.stalled) info.row({"", "stalled: bad elements remain that no point could fix"});
-  info.row({"backend", backend_line(s.backend_used, s.device_name)});
+  info.row({"backend", a.options.deterministic ? "cpu (refined on one thread: --deterministic)"
+                                               : backend_line(s.backend_used, s.device_name)});
   info.row({"peak device memory", s.backend_used == Backend::Gpu ? bytes(s.peak_device_bytes)
                                                                   : "- (CPU backend)"});
   info.row({"min angle", fixed(s.min_angle_deg, 2) + " deg (bound " +
@@ -261,6 +265,7 @@ void write_stats_json(const std::string& path, const Args2d& a, const Refine2dRe
   j.field("max_steiner_points", o.max_steiner_points);
   j.field("mode", o.mode == EncroachMode::Chew ? "chew" : "ruppert");
   j.field("off_centers", o.off_centers);
+  j.field("deterministic", o.deterministic);
   j.field("remove_exterior", o.remove_exterior);
   j.field("strict_input", o.strict_input);
   j.field("triangle_switches", a.switches);

@@ -44,6 +44,10 @@ struct Refine2dOptions {
   // Auto uses the GPU from this estimated output size. 0 (default): chosen per run, for the
   // CPU path's thread count and whether this process has used the GPU yet (refine2d.cpp).
   std::size_t gpu_min_triangles = 0;
+  // The same mesh on every run of the same input and options: the CPU engine on one thread
+  // (with several, which losing cavities stop early, and the encroachments they flag, depend
+  // on thread timing; the GPU's too). Refused with Backend::Gpu.
+  bool deterministic = false;
 };
 
 struct PhaseTime {

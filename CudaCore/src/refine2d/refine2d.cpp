@@ -13,6 +13,7 @@
 #include <sstream>
 #include <string>
 
+#include <omp.h>
 #include <sys/resource.h>
 
 #include "exec/space.h"
@@ -372,11 +373,18 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
   if (options.region_areas)
     for (const RegionSeed2& r : pslg.regions) region_area2.push_back(r.max_area > 0 ? 2 * r.max_area : 0.0);
   const SizeEstimate estimate = estimate_size(mesh, options, region_area2);
-  st.backend_used = resolve_backend(options.backend,
-                                    static_cast<std::size_t>(std::min(estimate.typical, 1e15)),
-                                    gpu_min_triangles(options));
+  if (options.deterministic && options.backend == Backend::Gpu)
+    throw Error(Status::InvalidInput,
+                "deterministic runs use the CPU backend on one thread: on the GPU, as on several "
+                "CPU threads, the mesh depends on thread timing");
+  st.backend_used = options.deterministic
+                        ? Backend::Cpu
+                        : resolve_backend(options.backend,
+                                          static_cast<std::size_t>(std::min(estimate.typical, 1e15)),
+                                          gpu_min_triangles(options));
+  const int engine_threads = options.deterministic ? 1 : cpu_threads();
   if (st.backend_used == Backend::Gpu) st.device_name = device_info().name;
-  else st.device_name = "CPU (" + std::to_string(cpu_threads()) + " OpenMP threads)";
+  else st.device_name = "CPU (" + std::to_string(engine_threads) + " OpenMP threads)";
 
   // Refinement (or, with refine off, only the engine's upload and download, which list the
   // subsegments and bad triangles the same way).
@@ -409,7 +417,15 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
       mark_gpu_warm();
 #endif
     } else {
-      er = r2d::refine_mesh_cpu(mesh, mesh_out, params, engine_cb);
+      const int threads = cpu_threads();
+      omp_set_num_threads(engine_threads);
+      try {
+        er = r2d::refine_mesh_cpu(mesh, mesh_out, params, engine_cb);
+      } catch (...) {
+        omp_set_num_threads(threads);
+        throw;
+      }
+      omp_set_num_threads(threads);
     }
   } catch (const std::bad_alloc&) {
     throw Error(Status::OutOfDeviceMemory, "out of memory during refinement");

@@ -234,3 +234,39 @@ TEST(Refine2dRemoved, SegmentsBorderingOnlyRemovedRegionsAreSaidAndAccepted) {
 }
 
 }  // namespace
+
+namespace {
+
+// Reproducibility: with deterministic set, two runs of a segment soup (split at its 2,000-odd
+// crossings) give the same mesh, point for point; a GPU run cannot promise that and is refused.
+TEST(Refine2dDeterministic, SameMeshOnEveryRun) {
+  Pslg soup;
+  unsigned x = 12345;
+  const auto next = [&x] {
+    x = x * 1103515245u + 12345u;
+    return (x >> 8) / 16777216.0;
+  };
+  for (int i = 0; i < 80; ++i) {
+    soup.points.push_back({next(), next()});
+    soup.points.push_back({next(), next()});
+    soup.segments.push_back({2 * i, 2 * i + 1});
+  }
+  auto o = cpu(25);
+  o.deterministic = true;
+  const gdr::Refine2dResult a = gdr::refine_2d(soup, o), b = gdr::refine_2d(soup, o);
+  ASSERT_EQ(a.mesh.points.size(), b.mesh.points.size());
+  EXPECT_GT(a.mesh.points.size(), 1000u);
+  for (std::size_t i = 0; i < a.mesh.points.size(); ++i) {
+    EXPECT_EQ(a.mesh.points[i].x, b.mesh.points[i].x) << i;
+    EXPECT_EQ(a.mesh.points[i].y, b.mesh.points[i].y) << i;
+  }
+  EXPECT_EQ(a.mesh.triangles, b.mesh.triangles);
+  EXPECT_TRUE(gdr::validate_trimesh(a.mesh, &soup).valid);
+  o.backend = gdr::Backend::Gpu;
+  gdr::Status status;
+  const std::string msg = error_of(soup, o, &status);
+  EXPECT_EQ(status, gdr::Status::InvalidInput);
+  EXPECT_NE(msg.find("deterministic"), std::string::npos) << msg;
+}
+
+}  // namespace
