@@ -71,6 +71,9 @@ inline int vertex_index(const TextFile& file, std::string_view token, const Node
   return vertex_index(file, token, nodes.first_index, nodes.size(), what);
 }
 
+// write_file_atomically (gdr/io.h) of a file made of pieces, in order.
+void write_file_atomically(const std::string& path, const std::vector<std::string_view>& parts);
+
 // Reads a whole file into memory; IoError if it cannot be opened or read.
 std::string read_file_bytes(const std::string& path);
 

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <string_view>
 #include <type_traits>
 
 #include "gdr/error.h"
@@ -31,7 +32,10 @@ class OutputFiles {
       if (!f.temporary.empty()) ::unlink(f.temporary.c_str());
   }
 
-  void write(const std::string& path, const std::string& bytes) {
+  void write(const std::string& path, const std::string& bytes) { write(path, {std::string_view(bytes)}); }
+
+  // One file from several pieces, in order (a large file need not be joined in memory first).
+  void write(const std::string& path, const std::vector<std::string_view>& parts) {
     File f{temporary_name(path), path};
     // Exclusive creation: a temporary never replaces a file of the user's.
     int fd = -1;
@@ -42,19 +46,21 @@ class OutputFiles {
       f.temporary = temporary_name(path);
     }
     pending_.push_back(f);
-    const char* p = bytes.data();
-    std::size_t left = bytes.size();
-    while (left > 0) {
-      const ssize_t n = ::write(fd, p, left);
-      if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) {
-        const int e = errno;
-        ::close(fd);
-        errno = e;
-        fail(path, "write failed");
+    for (const std::string_view bytes : parts) {
+      const char* p = bytes.data();
+      std::size_t left = bytes.size();
+      while (left > 0) {
+        const ssize_t n = ::write(fd, p, left);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) {
+          const int e = errno;
+          ::close(fd);
+          errno = e;
+          fail(path, "write failed");
+        }
+        p += n;
+        left -= static_cast<std::size_t>(n);
       }
-      p += n;
-      left -= static_cast<std::size_t>(n);
     }
     if (::fsync(fd) != 0) {
       const int e = errno;
@@ -174,6 +180,12 @@ std::string node_file_3d(const std::vector<Point3>& points) {
 void write_file_atomically(const std::string& path, const std::string& bytes) {
   OutputFiles files;
   files.write(path, bytes);
+  files.commit();
+}
+
+void write_file_atomically(const std::string& path, const std::vector<std::string_view>& parts) {
+  OutputFiles files;
+  files.write(path, parts);
   files.commit();
 }
 

@@ -1,7 +1,10 @@
-// VTK XML writers (.vtu, .vtp) with inline base64 binary arrays (uncompressed, UInt64
+// VTK XML writers (.vtu, .vtp) with raw appended binary arrays (uncompressed, UInt64
 // headers), written by the core so that builds without VTK still produce viewable results.
 #include <cstdint>
 #include <cstring>
+#include <deque>
+#include <string_view>
+#include <type_traits>
 
 #include "gdr/error.h"
 #include "gdr/io.h"
@@ -12,35 +15,6 @@ namespace {
 
 constexpr std::uint8_t kVtkTriangle = 5;
 constexpr std::uint8_t kVtkTetra = 10;
-
-// Appends the base64 text of `n` bytes (padded with '='). Large arrays are encoded in
-// parallel: a 30M-tetrahedron mesh carries about 3 GB of it.
-void append_base64(std::string& out, const unsigned char* src, std::size_t n) {
-  static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  const std::size_t start = out.size();
-  out.resize(start + 4 * ((n + 2) / 3));
-  char* dst = out.data() + start;
-  const long long groups = static_cast<long long>(n / 3);
-#pragma omp parallel for schedule(static) if (groups > (1 << 16))
-  for (long long g = 0; g < groups; ++g) {
-    const unsigned char* s = src + 3 * g;
-    const unsigned v = (unsigned{s[0]} << 16) | (unsigned{s[1]} << 8) | s[2];
-    char* d = dst + 4 * g;
-    d[0] = table[v >> 18];
-    d[1] = table[(v >> 12) & 63];
-    d[2] = table[(v >> 6) & 63];
-    d[3] = table[v & 63];
-  }
-  const std::size_t rest = n % 3;
-  if (rest == 0) return;
-  const unsigned char* s = src + 3 * groups;
-  const unsigned v = (unsigned{s[0]} << 16) | (rest == 2 ? unsigned{s[1]} << 8 : 0u);
-  char* d = dst + 4 * groups;
-  d[0] = table[v >> 18];
-  d[1] = table[(v >> 12) & 63];
-  d[2] = rest == 2 ? table[(v >> 6) & 63] : '=';
-  d[3] = '=';
-}
 
 std::string xml_escape(const std::string& s) {
   std::string r;
@@ -56,32 +30,59 @@ std::string xml_escape(const std::string& s) {
   return r;
 }
 
-template <class T>
-void append_array(std::string& out, const char* type, const std::string& name, int components,
-                  const std::vector<T>& values) {
-  out += "        <DataArray type=\"";
-  out += type;
-  out += "\"";
-  if (!name.empty()) out += " Name=\"" + xml_escape(name) + "\"";
-  out += " NumberOfComponents=\"" + std::to_string(components) + "\" format=\"binary\">\n";
-  // One base64 stream: the UInt64 byte count, then the values. The 8-byte header and the
-  // first data byte make three whole groups, so the rest is encoded straight from `values`.
-  const std::uint64_t bytes = values.size() * sizeof(T);
-  const auto* data = reinterpret_cast<const unsigned char*>(values.data());
-  const std::size_t first = bytes > 0 ? 1 : 0;
-  unsigned char head[sizeof bytes + 1];
-  std::memcpy(head, &bytes, sizeof bytes);
-  if (first) head[sizeof bytes] = data[0];
-  append_base64(out, head, sizeof bytes + first);
-  append_base64(out, data + first, bytes - first);
-  out += "\n        </DataArray>\n";
-}
+// A file as the XML part and its raw appended data: each array is a DataArray element that
+// points (offset) at its block, a UInt64 byte count followed by the values as they are in
+// memory. No base64, and no copy of arrays that are already laid out as VTK wants them: the
+// blocks are written straight from the caller's vectors (which must outlive the write).
+class VtkXml {
+ public:
+  std::string xml;
 
-void append_array(std::string& out, const DataArray& a) {
-  if (!a.float32) return append_array(out, "Float64", a.name, a.components, a.values);
-  append_array(out, "Float32", a.name, a.components,
-               std::vector<float>(a.values.begin(), a.values.end()));
-}
+  template <class T>
+  void array(const char* type, const std::string& name, int components, const T* values, std::size_t n) {
+    xml += "        <DataArray type=\"";
+    xml += type;
+    xml += "\"";
+    if (!name.empty()) xml += " Name=\"" + xml_escape(name) + "\"";
+    xml += " NumberOfComponents=\"" + std::to_string(components) + "\" format=\"appended\" offset=\"" +
+           std::to_string(offset_) + "\"/>\n";
+    const std::uint64_t& bytes = counts_.emplace_back(n * sizeof(T));
+    blocks_.emplace_back(reinterpret_cast<const char*>(&bytes), sizeof bytes);
+    blocks_.emplace_back(reinterpret_cast<const char*>(values), bytes);
+    offset_ += sizeof bytes + bytes;
+  }
+  template <class T>
+  void array(const char* type, const std::string& name, int components, const std::vector<T>& values) {
+    array(type, name, components, values.data(), values.size());
+  }
+  // Values made for the file (single precision, cell types) are kept here until it is written.
+  void owned_array(const char* type, const std::string& name, int components, std::vector<float> values) {
+    const std::vector<float>& kept = floats_.emplace_back(std::move(values));
+    array(type, name, components, kept);
+  }
+  void owned_array(const char* type, const std::string& name, int components, std::vector<std::uint8_t> values) {
+    const std::vector<std::uint8_t>& kept = bytes_.emplace_back(std::move(values));
+    array(type, name, components, kept);
+  }
+  void array(const DataArray& a) {
+    if (!a.float32) return array("Float64", a.name, a.components, a.values);
+    owned_array("Float32", a.name, a.components, std::vector<float>(a.values.begin(), a.values.end()));
+  }
+
+  void write(const std::string& path, const std::string& end_tags) {
+    std::vector<std::string_view> parts{xml};
+    parts.insert(parts.end(), blocks_.begin(), blocks_.end());
+    parts.emplace_back(end_tags);
+    write_file_atomically(path, parts);
+  }
+
+ private:
+  std::deque<std::uint64_t> counts_;  // deques: the blocks point into them
+  std::deque<std::vector<float>> floats_;
+  std::deque<std::vector<std::uint8_t>> bytes_;
+  std::vector<std::string_view> blocks_;
+  std::uint64_t offset_ = 0;
+};
 
 void check_arrays(const std::vector<DataArray>& arrays, std::size_t count, const char* where) {
   for (const DataArray& a : arrays) {
@@ -105,20 +106,40 @@ struct Piece {
 };
 
 // Cells with their corners taken in `order` (VTK's orientation may differ from ours).
+// Filled in parallel: a large mesh's file is mostly these arrays.
 template <std::size_t N>
 void fill_cells(Piece& piece, const std::vector<std::array<int, N>>& cells,
                 const std::array<int, N>& order) {
   piece.corners = static_cast<int>(N);
-  piece.connectivity.reserve(cells.size() * N);
-  piece.offsets.reserve(cells.size());
-  for (const auto& c : cells) {
-    for (int k : order) piece.connectivity.push_back(c[k]);
-    piece.offsets.push_back(static_cast<std::int64_t>(piece.connectivity.size()));
+  const long long n = static_cast<long long>(cells.size());
+  piece.connectivity.resize(N * cells.size());
+  piece.offsets.resize(cells.size());
+  std::int32_t* conn = piece.connectivity.data();
+  std::int64_t* off = piece.offsets.data();
+#pragma omp parallel for schedule(static) if (n > (1 << 16))
+  for (long long c = 0; c < n; ++c) {
+    for (std::size_t k = 0; k < N; ++k) conn[N * c + k] = cells[c][order[k]];
+    off[c] = static_cast<std::int64_t>(N * (c + 1));
+  }
+}
+
+// Points as xyz (z = 0 in 2D).
+template <class P>
+void fill_points(Piece& piece, const std::vector<P>& points) {
+  const long long n = static_cast<long long>(points.size());
+  piece.points.resize(3 * points.size());
+  double* xyz = piece.points.data();
+#pragma omp parallel for schedule(static) if (n > (1 << 16))
+  for (long long i = 0; i < n; ++i) {
+    xyz[3 * i] = points[i].x;
+    xyz[3 * i + 1] = points[i].y;
+    if constexpr (std::is_same_v<P, Point3>) xyz[3 * i + 2] = points[i].z;
+    else xyz[3 * i + 2] = 0.0;
   }
 }
 
 // `mesh_arrays`: arrays the mesh itself carries, written after the caller's `attributes`.
-std::string vtk_file(const Piece& piece, const Attributes& attributes, bool polydata,
+void write_vtk_xml(const std::string& path, const Piece& piece, const Attributes& attributes, bool polydata,
                      const Attributes& mesh_arrays = {}) {
   const std::size_t np = piece.points.size() / 3, nc = piece.offsets.size();
   for (const Attributes* a : {&attributes, &mesh_arrays}) {
@@ -133,52 +154,42 @@ std::string vtk_file(const Piece& piece, const Attributes& attributes, bool poly
     throw Error(Status::InvalidInput, "tet_region has " + std::to_string(piece.region->size()) +
                                           " entries for " + std::to_string(nc) + " cells");
   const char* type = polydata ? "PolyData" : "UnstructuredGrid";
-  std::string out;
-  // Base64 takes 4 characters per 3 bytes; XML tags take a few hundred in all.
-  std::size_t bytes = 8 * piece.points.size() + np + 4 * piece.connectivity.size() + 13 * nc;
-  for (const auto* arrays : {&attributes.point_data, &attributes.cell_data,
-                             &mesh_arrays.point_data, &mesh_arrays.cell_data})
-    for (const DataArray& a : *arrays) bytes += (a.float32 ? 4 : 8) * a.values.size();
-  out.reserve(bytes / 3 * 4 + 4096);
-  out += "<?xml version=\"1.0\"?>\n<VTKFile type=\"";
-  out += type;
-  out += "\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n  <";
-  out += type;
-  out += ">\n    <Piece NumberOfPoints=\"" + std::to_string(np) + "\" ";
-  out += polydata ? "NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\""
-                  : "NumberOfCells=\"";
-  out += std::to_string(nc) + "\">\n      <PointData>\n";
-  for (const DataArray& a : attributes.point_data) append_array(out, a);
-  for (const DataArray& a : mesh_arrays.point_data) append_array(out, a);
-  if (piece.point_type && !piece.point_type->empty()) {
-    std::vector<std::uint8_t> pt(np);
-    std::memcpy(pt.data(), piece.point_type->data(), np);
-    append_array(out, "UInt8", "PointType", 1, pt);
-  }
-  out += "      </PointData>\n      <CellData>\n";
-  for (const DataArray& a : attributes.cell_data) append_array(out, a);
-  for (const DataArray& a : mesh_arrays.cell_data) append_array(out, a);
-  if (region) append_array(out, "Int32", "Region", 1, *piece.region);
-  out += "      </CellData>\n      <Points>\n";
-  append_array(out, "Float64", "Points", 3, piece.points);
-  out += "      </Points>\n      <";
-  out += polydata ? "Polys" : "Cells";
-  out += ">\n";
-  append_array(out, "Int32", "connectivity", 1, piece.connectivity);
-  append_array(out, "Int64", "offsets", 1, piece.offsets);
-  if (!polydata) append_array(out, "UInt8", "types", 1, std::vector<std::uint8_t>(nc, piece.cell_type));
-  out += "      </";
-  out += polydata ? "Polys" : "Cells";
-  out += ">\n    </Piece>\n  </";
-  out += type;
-  out += ">\n</VTKFile>\n";
-  return out;
+  VtkXml f;
+  f.xml = "<?xml version=\"1.0\"?>\n<VTKFile type=\"";
+  f.xml += type;
+  f.xml += "\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n  <";
+  f.xml += type;
+  f.xml += ">\n    <Piece NumberOfPoints=\"" + std::to_string(np) + "\" ";
+  f.xml += polydata ? "NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\""
+                    : "NumberOfCells=\"";
+  f.xml += std::to_string(nc) + "\">\n      <PointData>\n";
+  for (const DataArray& a : attributes.point_data) f.array(a);
+  for (const DataArray& a : mesh_arrays.point_data) f.array(a);
+  if (piece.point_type && !piece.point_type->empty())
+    f.array("UInt8", "PointType", 1, reinterpret_cast<const std::uint8_t*>(piece.point_type->data()), np);
+  f.xml += "      </PointData>\n      <CellData>\n";
+  for (const DataArray& a : attributes.cell_data) f.array(a);
+  for (const DataArray& a : mesh_arrays.cell_data) f.array(a);
+  if (region) f.array("Int32", "Region", 1, *piece.region);
+  f.xml += "      </CellData>\n      <Points>\n";
+  f.array("Float64", "Points", 3, piece.points);
+  f.xml += "      </Points>\n      <";
+  f.xml += polydata ? "Polys" : "Cells";
+  f.xml += ">\n";
+  f.array("Int32", "connectivity", 1, piece.connectivity);
+  f.array("Int64", "offsets", 1, piece.offsets);
+  if (!polydata) f.owned_array("UInt8", "types", 1, std::vector<std::uint8_t>(nc, piece.cell_type));
+  f.xml += "      </";
+  f.xml += polydata ? "Polys" : "Cells";
+  f.xml += ">\n    </Piece>\n  </";
+  f.xml += type;
+  f.xml += ">\n  <AppendedData encoding=\"raw\">\n   _";
+  f.write(path, "\n  </AppendedData>\n</VTKFile>\n");
 }
 
 Piece tri_piece(const TriMesh& mesh) {
   Piece piece;
-  piece.points.reserve(3 * mesh.points.size());
-  for (const Point2& p : mesh.points) piece.points.insert(piece.points.end(), {p.x, p.y, 0.0});
+  fill_points(piece, mesh.points);
   fill_cells(piece, mesh.triangles, {0, 1, 2});
   piece.cell_type = kVtkTriangle;
   piece.point_type = &mesh.point_type;
@@ -259,34 +270,32 @@ void write_vtk_legacy(const std::string& path, const TriMesh& mesh, const Attrib
 }
 
 void write_vtu(const std::string& path, const TriMesh& mesh, const Attributes& attributes) {
-  write_file_atomically(path, vtk_file(tri_piece(mesh), attributes, false, tri_mesh_arrays(mesh)));
+  write_vtk_xml(path, tri_piece(mesh), attributes, false, tri_mesh_arrays(mesh));
 }
 
 void write_vtp(const std::string& path, const TriMesh& mesh, const Attributes& attributes) {
-  write_file_atomically(path, vtk_file(tri_piece(mesh), attributes, true, tri_mesh_arrays(mesh)));
+  write_vtk_xml(path, tri_piece(mesh), attributes, true, tri_mesh_arrays(mesh));
 }
 
 void write_vtu(const std::string& path, const TetMesh& mesh, const Attributes& attributes) {
   Piece piece;
-  piece.points.reserve(3 * mesh.points.size());
-  for (const Point3& p : mesh.points) piece.points.insert(piece.points.end(), {p.x, p.y, p.z});
+  fill_points(piece, mesh.points);
   // VTK's tetrahedra have (p1 - p0) x (p2 - p0) pointing towards p3, the opposite of ours
   // (orient3d > 0, gdr/validate.h): swap two corners, as write_tetgen does.
   fill_cells(piece, mesh.tets, {1, 0, 2, 3});
   piece.cell_type = kVtkTetra;
   piece.point_type = &mesh.point_type;
   piece.region = &mesh.tet_region;
-  write_file_atomically(path, vtk_file(piece, attributes, false));
+  write_vtk_xml(path, piece, attributes, false);
 }
 
 void write_surface_vtp(const std::string& path, const TetMesh& mesh, const Attributes& attributes) {
   Piece piece;
-  piece.points.reserve(3 * mesh.points.size());
-  for (const Point3& p : mesh.points) piece.points.insert(piece.points.end(), {p.x, p.y, p.z});
+  fill_points(piece, mesh.points);
   fill_cells(piece, mesh.subfaces, {0, 1, 2});
   piece.cell_type = kVtkTriangle;
   piece.point_type = &mesh.point_type;
-  write_file_atomically(path, vtk_file(piece, attributes, true));
+  write_vtk_xml(path, piece, attributes, true);
 }
 
 }  // namespace gdr::io
