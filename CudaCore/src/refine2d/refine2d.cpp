@@ -21,6 +21,7 @@
 #include "gdr/validate.h"
 #include "refine2d/engine_dispatch.h"
 #include "refine2d/input.h"
+#include "validate/conformity.h"
 
 namespace gdr {
 namespace {
@@ -294,17 +295,30 @@ struct PowerOfTwoScale {
   }
 };
 
-// Input segments with no subsegment left border only removed regions: a hole seed on a
-// segment or vertex, hole rings inside a hole, or, with remove_exterior, a chain left open
-// (the exterior floods through the gap and takes what the chain was to enclose). They are
+// Input segments not kept whole border removed regions: a hole seed on a segment or vertex,
+// hole rings inside a hole, or, with remove_exterior, a chain left open (the exterior floods
+// through the gap and takes what the chain was to enclose) or a dangling segment. They are
 // listed in the mesh (for the validator) and said, the first few numbered as in the input
 // file, instead of dropped silently.
-void note_removed_segments(const r2d::CleanPslg& pslg, TriMesh& out, std::size_t inputs,
+void note_removed_segments(const Pslg& input, const r2d::CleanPslg& pslg, TriMesh& out,
                            bool remove_exterior, const Callbacks& cb) {
-  std::vector<char> kept(inputs, 0), present(inputs, 0);
+  const std::size_t inputs = input.segments.size();
+  std::vector<char> present(inputs, 0);
   for (const int o : pslg.segment_origin) present[o] = 1;
-  for (const int o : out.subsegment_source)
-    if (o >= 0) kept[o] = 1;
+  // A segment is kept when its subsegments form one path between its ends (mesh vertices
+  // keep the cleaned points' numbers); a segment whose end is a merged duplicate point, when
+  // any of it is left.
+  std::vector<int> cleaned(input.points.size(), -1);
+  for (std::size_t v = 0; v < pslg.point_origin.size(); ++v)
+    if (pslg.point_origin[v] >= 0) cleaned[pslg.point_origin[v]] = static_cast<int>(v);
+  std::vector<std::vector<std::array<int, 2>>> chains(inputs);
+  for (std::size_t k = 0; k < out.subsegments.size(); ++k)
+    if (out.subsegment_source[k] >= 0) chains[out.subsegment_source[k]].push_back(out.subsegments[k]);
+  std::vector<char> kept(inputs, 0);
+  for (std::size_t s = 0; s < inputs; ++s) {
+    const int a = cleaned[input.segments[s][0]], b = cleaned[input.segments[s][1]];
+    kept[s] = a < 0 || b < 0 ? !chains[s].empty() : !validate::chain_path(chains[s], a, b).empty();
+  }
   std::string list;
   out.removed_segments.clear();
   for (std::size_t s = 0; s < inputs; ++s)
@@ -325,7 +339,7 @@ void note_removed_segments(const r2d::CleanPslg& pslg, TriMesh& out, std::size_t
       if (degree[v] == 1 && pslg.point_origin[v] >= 0 && open++ < 5)
         ends += (ends.empty() ? "" : ", ") + std::to_string(pslg.point_origin[v] + pslg.first_index);
   }
-  cb.warning(std::to_string(count) + " input segment(s) border only removed regions and are not in the mesh (segment " +
+  cb.warning(std::to_string(count) + " input segment(s) border removed regions and are not in the mesh, or only in part (segment " +
              list + (count > 5 ? ", ..." : "") + "): " +
              (open ? std::to_string(open) + " segment chain end(s) are open (point " + ends +
                          (open > 5 ? ", ..." : "") +
@@ -474,7 +488,7 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
     out.subsegments[k] = {mesh_out.subseg[4 * k], mesh_out.subseg[4 * k + 1]};
     out.subsegment_source[k] = s < mesh.input_segments ? pslg.segment_origin[s] : -1;
   }
-  note_removed_segments(pslg, out, unscaled.segments.size(), options.remove_exterior, cb);
+  note_removed_segments(input, pslg, out, options.remove_exterior, cb);
   r2d::carry_input_data(input, pslg, mesh_out.xy.data(), mesh_out.subseg.data(),
                         mesh_out.tregion.empty() ? nullptr : mesh_out.tregion.data(),
                         options.region_attributes, out);

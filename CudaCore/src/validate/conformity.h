@@ -1,6 +1,7 @@
 // Conformity helpers shared by the 2D and 3D validators: finding input points in the mesh by
 // exact coordinates, and following an input segment along the mesh's subsegment chain.
 #pragma once
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <unordered_map>
@@ -77,6 +78,40 @@ struct SubsegmentGraph {
       if (ok(s)) next[fill[s[0]]++] = s[1], next[fill[s[1]]++] = s[0];
   }
 };
+
+// The vertices, from a to b, of the path that the edges `chain` form; empty when they do not
+// form exactly one simple path from a to b (a gap, a branch, a cycle, an edge elsewhere).
+inline std::vector<int> chain_path(const std::vector<std::array<int, 2>>& chain, int a, int b) {
+  std::vector<int> verts;
+  for (const auto& e : chain) verts.push_back(e[0]), verts.push_back(e[1]);
+  std::sort(verts.begin(), verts.end());
+  verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
+  if (a == b || chain.empty() || verts.size() != chain.size() + 1 ||
+      !std::binary_search(verts.begin(), verts.end(), a) ||
+      !std::binary_search(verts.begin(), verts.end(), b))
+    return {};
+  const auto index = [&](int v) {
+    return static_cast<std::size_t>(std::lower_bound(verts.begin(), verts.end(), v) - verts.begin());
+  };
+  std::vector<std::array<int, 2>> next(verts.size(), {-1, -1});
+  for (const auto& e : chain)
+    for (int k = 0; k < 2; ++k) {
+      auto& n = next[index(e[k])];
+      if (e[0] == e[1] || n[1] >= 0) return {};  // a loop edge, or a vertex on three edges
+      n[n[0] >= 0 ? 1 : 0] = e[1 - k];
+    }
+  std::vector<int> path{a};
+  for (int prev = -1, cur = a; cur != b;) {
+    const auto& n = next[index(cur)];
+    if ((cur == a) != (n[1] < 0) || path.size() > chain.size()) return {};  // ends on one edge
+    const int to = n[0] != prev ? n[0] : n[1];
+    prev = cur;
+    cur = to;
+    path.push_back(cur);
+  }
+  if (next[index(b)][1] >= 0) return {};
+  return path;
+}
 
 // True when a chain of subsegments leads from mesh vertex a to b, every intermediate vertex
 // within `tolerance * |ab|` of segment ab and strictly progressing from a towards b.

@@ -44,23 +44,8 @@ Cgal::Point_2 cgal(const Point2& p) { return {p.x, p.y}; }
 // coordinate magnitude (intersection points are rounded and merged within 2^-40 of the extent).
 bool follow_sourced_chain(const std::vector<Point2>& P, const std::vector<std::array<int, 2>>& chain,
                           int a, int b, double tolerance, double extent) {
-  if (chain.empty()) return false;
-  std::vector<int> verts;
-  for (const auto& e : chain) verts.push_back(e[0]), verts.push_back(e[1]);
-  std::sort(verts.begin(), verts.end());
-  verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
-  if (verts.size() != chain.size() + 1 || !std::binary_search(verts.begin(), verts.end(), a) ||
-      !std::binary_search(verts.begin(), verts.end(), b))
-    return false;  // a path from a to b has one vertex more than edges
-  std::vector<std::vector<int>> next(verts.size());
-  const auto index = [&](int v) {
-    return static_cast<int>(std::lower_bound(verts.begin(), verts.end(), v) - verts.begin());
-  };
-  for (const auto& e : chain) {
-    if (e[0] == e[1]) return false;
-    next[index(e[0])].push_back(e[1]);
-    next[index(e[1])].push_back(e[0]);
-  }
+  const std::vector<int> path = validate::chain_path(chain, a, b);
+  if (path.empty()) return false;
   const Point2 &pa = P[a], &pb = P[b];
   const bool along_x = std::fabs(pb.x - pa.x) >= std::fabs(pb.y - pa.y);
   const double dir = along_x ? pb.x - pa.x : pb.y - pa.y;
@@ -69,19 +54,14 @@ bool follow_sourced_chain(const std::vector<Point2>& P, const std::vector<std::a
   const int k = -std::ilogb(std::max({std::fabs(pa.x), std::fabs(pa.y), std::fabs(pb.x), std::fabs(pb.y)}));
   const double dx = std::ldexp(pb.x, k) - std::ldexp(pa.x, k), dy = std::ldexp(pb.y, k) - std::ldexp(pa.y, k);
   const double len = std::hypot(dx, dy), slack = tolerance * len + std::ldexp(extent, k - 38);
-  int prev = -1, cur = a;
-  for (std::size_t steps = 0; cur != b; ++steps) {
-    const auto& nb = next[index(cur)];
-    if (steps > chain.size() || nb.size() != (cur == a ? 1u : 2u)) return false;
-    const int to = nb[0] != prev ? nb[0] : nb[1];
+  for (std::size_t i = 1; i < path.size(); ++i) {
+    const int cur = path[i - 1], to = path[i];
     if (key(to) < key(cur)) return false;
     const double rx = std::ldexp(P[to].x, k) - std::ldexp(pa.x, k),
                  ry = std::ldexp(P[to].y, k) - std::ldexp(pa.y, k);
     if (to != b && !(std::fabs(rx * dy - ry * dx) <= slack * len)) return false;
-    prev = cur;
-    cur = to;
   }
-  return next[index(b)].size() == 1;
+  return true;
 }
 
 }  // namespace
@@ -235,8 +215,7 @@ ValidationReport validate_trimesh(const TriMesh& mesh, const Pslg* input,
       else if (a != b)
         seg_ok[s] = (sourced && follow_sourced_chain(P, chains[s], a, b, options.segment_tolerance, extent)) ||
                     validate::follow_segment(P, graph, a, b, options.segment_tolerance) ||
-                    (sourced && chains[s].empty() &&
-                     std::binary_search(mesh.removed_segments.begin(), mesh.removed_segments.end(), int(s)));
+                    std::binary_search(mesh.removed_segments.begin(), mesh.removed_segments.end(), int(s));
     }
     for (std::size_t s = 0; s < S.size(); ++s) {
       if (seg_ok[s]) continue;
