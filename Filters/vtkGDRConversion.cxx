@@ -35,6 +35,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -210,6 +211,7 @@ void vtkGDRConversion::ToPslg(
       pslg.holes.push_back({ p[0], p[1] });
     }
   }
+  AddFileSeeds(input, pslg);
 }
 
 //------------------------------------------------------------------------------
@@ -240,8 +242,9 @@ void vtkGDRConversion::ToPolyData(const gdr::TriMesh& mesh, double z, vtkPolyDat
     {
       type->SetValue(i, static_cast<unsigned char>(mesh.point_type[i]));
     }
+    // Not the active scalars: ParaView colours by active point scalars before cell ones,
+    // and the mesh is to be coloured by MinAngle (AddTriangleQuality).
     output->GetPointData()->AddArray(type);
-    output->GetPointData()->SetActiveScalars("PointType");
   }
 }
 
@@ -493,6 +496,10 @@ void vtkGDRConversion::ToSurface(vtkPolyData* input, gdr::Surface& surface)
     return;
   }
   SurfaceBuilder builder(input->GetPoints(), surface, true);
+  // A cell array FacetId (the readers' triangulated polygons) groups cells into facets.
+  vtkDataArray* facetIds = input->GetCellData()->GetArray("FacetId");
+  auto facetOf = [facetIds](vtkIdType cell)
+  { return static_cast<int>(facetIds ? std::lround(facetIds->GetComponent(cell, 0)) : cell); };
   // Cell ids of a polydata count vertices, lines, polygons, then strips.
   vtkIdType cellId = input->GetNumberOfVerts() + input->GetNumberOfLines();
   vtkIdType npts;
@@ -500,7 +507,7 @@ void vtkGDRConversion::ToSurface(vtkPolyData* input, gdr::Surface& surface)
   vtkCellArray* polys = input->GetPolys();
   for (polys->InitTraversal(); polys->GetNextCell(npts, ids); ++cellId)
   {
-    builder.AddPolygon(npts, ids, static_cast<int>(cellId));
+    builder.AddPolygon(npts, ids, facetOf(cellId));
   }
   vtkCellArray* strips = input->GetStrips();
   for (strips->InitTraversal(); strips->GetNextCell(npts, ids); ++cellId)
@@ -510,9 +517,10 @@ void vtkGDRConversion::ToSurface(vtkPolyData* input, gdr::Surface& surface)
       // Every other triangle of a strip turns the other way round.
       const vtkIdType a = ids[i % 2 ? i + 1 : i];
       const vtkIdType b = ids[i % 2 ? i : i + 1];
-      builder.AddTriangle(a, b, ids[i + 2], static_cast<int>(cellId));
+      builder.AddTriangle(a, b, ids[i + 2], facetOf(cellId));
     }
   }
+  AddFileSeeds(input, surface);
 }
 
 //------------------------------------------------------------------------------
@@ -722,4 +730,209 @@ void vtkGDRConversion::ToSubfaces(
     mesh.subface_facet.size() == mesh.subfaces.size() ? mesh.subface_facet
                                                       : std::vector<int>(mesh.subfaces.size(), -1));
   output->GetCellData()->SetActiveScalars("FacetId");
+}
+
+//------------------------------------------------------------------------------
+// Meshing inputs and meshes read from files (the readers).
+namespace
+{
+template <typename PointT>
+vtkSmartPointer<vtkPoints> ToPoints(const std::vector<PointT>& in)
+{
+  vtkSmartPointer<vtkPoints> points = vtkSmartPointer<vtkPoints>::New();
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(static_cast<vtkIdType>(in.size()));
+  for (vtkIdType i = 0; i < static_cast<vtkIdType>(in.size()); ++i)
+  {
+    if constexpr (std::is_same_v<PointT, gdr::Point2>)
+    {
+      points->SetPoint(i, in[i].x, in[i].y, 0.0);
+    }
+    else
+    {
+      points->SetPoint(i, in[i].x, in[i].y, in[i].z);
+    }
+  }
+  return points;
+}
+
+// The seeds as a 3-component field data array (empty seeds: no array).
+template <typename PointT>
+void AddSeedArray(const char* name, const std::vector<PointT>& seeds, vtkFieldData* fd)
+{
+  if (seeds.empty())
+  {
+    return;
+  }
+  vtkNew<vtkDoubleArray> array;
+  array->SetName(name);
+  array->SetNumberOfComponents(3);
+  array->SetNumberOfTuples(static_cast<vtkIdType>(seeds.size()));
+  for (vtkIdType i = 0; i < static_cast<vtkIdType>(seeds.size()); ++i)
+  {
+    if constexpr (std::is_same_v<PointT, gdr::Point2>)
+    {
+      array->SetTuple3(i, seeds[i].x, seeds[i].y, 0.0);
+    }
+    else
+    {
+      array->SetTuple3(i, seeds[i].x, seeds[i].y, seeds[i].z);
+    }
+  }
+  fd->AddArray(array);
+}
+
+// Vertex cells for the points that no other cell uses, so that they are drawn and kept.
+void AddIsolatedPointVertices(vtkIdType npoints, const std::vector<char>& used, vtkPolyData* pd)
+{
+  vtkNew<vtkCellArray> verts;
+  for (vtkIdType i = 0; i < npoints; ++i)
+  {
+    if (!used[i])
+    {
+      verts->InsertNextCell(1, &i);
+    }
+  }
+  if (verts->GetNumberOfCells() > 0)
+  {
+    pd->SetVerts(verts);
+  }
+}
+}
+
+void vtkGDRConversion::FromPslg(const gdr::Pslg& pslg, vtkPolyData* output)
+{
+  output->Initialize();
+  const vtkIdType npoints = static_cast<vtkIdType>(pslg.points.size());
+  output->SetPoints(ToPoints(pslg.points));
+  std::vector<char> used(npoints, 0);
+  for (const auto& s : pslg.segments)
+  {
+    used[s[0]] = used[s[1]] = 1;
+  }
+  AddIsolatedPointVertices(npoints, used, output);
+  output->SetLines(FixedSizeCells(pslg.segments, { 0, 1 }));
+  AddSeedArray("HoleSeeds", pslg.holes, output->GetFieldData());
+}
+
+void vtkGDRConversion::FromSurface(const gdr::Surface& surface, vtkPolyData* output)
+{
+  output->Initialize();
+  const vtkIdType npoints = static_cast<vtkIdType>(surface.points.size());
+  output->SetPoints(ToPoints(surface.points));
+  std::vector<char> used(npoints, 0);
+  for (const auto& t : surface.triangles)
+  {
+    used[t[0]] = used[t[1]] = used[t[2]] = 1;
+  }
+  for (const auto& s : surface.segments)
+  {
+    used[s[0]] = used[s[1]] = 1;
+  }
+  AddIsolatedPointVertices(npoints, used, output);
+  output->SetLines(FixedSizeCells(surface.segments, { 0, 1 }));
+  output->SetPolys(FixedSizeCells(surface.triangles, { 0, 1, 2 }));
+  if (surface.triangle_facet.size() == surface.triangles.size() && !surface.triangles.empty())
+  {
+    // Cell ids count vertices and lines first: FacetId is defined on every cell.
+    std::vector<int> facet(static_cast<std::size_t>(output->GetNumberOfCells()), -1);
+    std::copy(surface.triangle_facet.begin(), surface.triangle_facet.end(),
+      facet.end() - static_cast<std::ptrdiff_t>(surface.triangles.size()));
+    AddCellArray<vtkIntArray>(output->GetCellData(), "FacetId", facet);
+  }
+  vtkFieldData* fd = output->GetFieldData();
+  AddSeedArray("HoleSeeds", surface.holes, fd);
+  if (!surface.regions.empty())
+  {
+    std::vector<gdr::Point3> points;
+    std::vector<int> attribute;
+    std::vector<double> maxVolume;
+    for (const gdr::RegionSeed& r : surface.regions)
+    {
+      points.push_back(r.point);
+      attribute.push_back(r.attribute);
+      maxVolume.push_back(r.max_volume);
+    }
+    AddSeedArray("RegionSeeds", points, fd);
+    vtkNew<vtkIntArray> a;
+    a->SetName("RegionAttribute");
+    a->SetNumberOfValues(static_cast<vtkIdType>(attribute.size()));
+    std::copy(attribute.begin(), attribute.end(), a->GetPointer(0));
+    fd->AddArray(a);
+    vtkNew<vtkDoubleArray> v;
+    v->SetName("RegionMaximumVolume");
+    v->SetNumberOfValues(static_cast<vtkIdType>(maxVolume.size()));
+    std::copy(maxVolume.begin(), maxVolume.end(), v->GetPointer(0));
+    fd->AddArray(v);
+  }
+}
+
+void vtkGDRConversion::FromTriMesh(const gdr::TriMesh& mesh, vtkUnstructuredGrid* output)
+{
+  output->Initialize();
+  output->SetPoints(ToPoints(mesh.points));
+  output->SetCells(VTK_TRIANGLE, FixedSizeCells(mesh.triangles, { 0, 1, 2 }));
+}
+
+void vtkGDRConversion::FromTetMesh(const gdr::TetMesh& mesh, vtkUnstructuredGrid* output)
+{
+  output->Initialize();
+  output->SetPoints(ToPoints(mesh.points));
+  // The same corner swap as ToUnstructuredGrid: VTK's orientation is the core's opposite.
+  output->SetCells(VTK_TETRA, FixedSizeCells(mesh.tets, { 1, 0, 2, 3 }));
+  if (mesh.tet_region.size() == mesh.tets.size() && !mesh.tets.empty())
+  {
+    AddCellArray<vtkIntArray>(output->GetCellData(), "Region", mesh.tet_region);
+  }
+}
+
+void vtkGDRConversion::AddFileSeeds(vtkPolyData* input, gdr::Pslg& pslg)
+{
+  vtkDataArray* holes = input ? input->GetFieldData()->GetArray("HoleSeeds") : nullptr;
+  if (!holes || holes->GetNumberOfComponents() < 2)
+  {
+    return;
+  }
+  for (vtkIdType i = 0; i < holes->GetNumberOfTuples(); ++i)
+  {
+    pslg.holes.push_back({ holes->GetComponent(i, 0), holes->GetComponent(i, 1) });
+  }
+}
+
+void vtkGDRConversion::AddFileSeeds(vtkDataSet* input, gdr::Surface& surface)
+{
+  vtkFieldData* fd = input ? input->GetFieldData() : nullptr;
+  if (!fd)
+  {
+    return;
+  }
+  vtkDataArray* holes = fd->GetArray("HoleSeeds");
+  if (holes && holes->GetNumberOfComponents() == 3)
+  {
+    for (vtkIdType i = 0; i < holes->GetNumberOfTuples(); ++i)
+    {
+      surface.holes.push_back(
+        { holes->GetComponent(i, 0), holes->GetComponent(i, 1), holes->GetComponent(i, 2) });
+    }
+  }
+  vtkDataArray* regions = fd->GetArray("RegionSeeds");
+  vtkDataArray* attribute = fd->GetArray("RegionAttribute");
+  vtkDataArray* maxVolume = fd->GetArray("RegionMaximumVolume");
+  if (!regions || regions->GetNumberOfComponents() != 3 || !attribute ||
+    attribute->GetNumberOfTuples() != regions->GetNumberOfTuples())
+  {
+    return;
+  }
+  for (vtkIdType i = 0; i < regions->GetNumberOfTuples(); ++i)
+  {
+    gdr::RegionSeed seed;
+    seed.point = { regions->GetComponent(i, 0), regions->GetComponent(i, 1),
+      regions->GetComponent(i, 2) };
+    seed.attribute = static_cast<int>(std::lround(attribute->GetComponent(i, 0)));
+    if (maxVolume && maxVolume->GetNumberOfTuples() == regions->GetNumberOfTuples())
+    {
+      seed.max_volume = maxVolume->GetComponent(i, 0);
+    }
+    surface.regions.push_back(seed);
+  }
 }

@@ -32,8 +32,9 @@ public:
    * strip) edges become segments (repeated ids skipped, duplicates merged), vertex
    * cells give isolated points; with no cells at all every point is an input point.
    * Only points used by cells are kept. Points of `holeSeeds` (may be null) become
-   * hole seeds. `z` receives the plane height of the input; `warning` is set when the
-   * input is not in a z = constant plane.
+   * hole seeds, and so do the tuples of the input's field data array HoleSeeds (the
+   * holes of a .poly file, see FromPslg). `z` receives the plane height of the input;
+   * `warning` is set when the input is not in a z = constant plane.
    */
   static void ToPslg(vtkPolyData* input, vtkDataSet* holeSeeds, gdr::Pslg& pslg, double& z,
     std::string& warning);
@@ -68,8 +69,10 @@ public:
    * Builds a surface from polydata: each polygon and each triangle strip is one facet
    * (Surface::triangle_facet holds its polydata cell id); polygons with more than three
    * corners are triangulated by vtkPolygon. Lines and vertices are ignored. All points are
-   * kept, in order, so that the engine's messages name the input's point ids. Throws
-   * gdr::Error(InvalidInput) for a polygon that cannot be triangulated.
+   * kept, in order, so that the engine's messages name the input's point ids. A cell
+   * array FacetId, where present, gives the facet of each cell instead (the readers'
+   * triangulated polygons), and the field data seeds of a file (FromSurface) are added.
+   * Throws gdr::Error(InvalidInput) for a polygon that cannot be triangulated.
    */
   static void ToSurface(vtkPolyData* input, gdr::Surface& surface);
 
@@ -116,6 +119,31 @@ public:
    * The statistics of a 3D run as field data arrays.
    */
   static void AddStats(const gdr::QualityTetStats& stats, vtkFieldData* fieldData);
+
+  ///@{
+  /**
+   * Meshing inputs read from files, as the readers give them: a PSLG as points at z = 0,
+   * its segments as lines and its isolated points as vertices; a surface as triangles
+   * (cell array FacetId: the input facet of each, where polygons were triangulated),
+   * lines for its segments and vertices for isolated points. Hole seeds go into the field
+   * data array HoleSeeds (3 components), region seeds into RegionSeeds (3 components) with
+   * RegionAttribute and RegionMaximumVolume: AddFileSeeds reads them back (ToPslg and
+   * ToSurface call it), so that a file's holes and regions reach the filters.
+   */
+  static void FromPslg(const gdr::Pslg& pslg, vtkPolyData* output);
+  static void FromSurface(const gdr::Surface& surface, vtkPolyData* output);
+  static void AddFileSeeds(vtkPolyData* input, gdr::Pslg& pslg);
+  static void AddFileSeeds(vtkDataSet* input, gdr::Surface& surface);
+  ///@}
+
+  ///@{
+  /**
+   * Meshes read from files: triangles (at z = 0) or tetrahedra (with the cell array Region
+   * when the mesh has regions).
+   */
+  static void FromTriMesh(const gdr::TriMesh& mesh, vtkUnstructuredGrid* output);
+  static void FromTetMesh(const gdr::TetMesh& mesh, vtkUnstructuredGrid* output);
+  ///@}
 };
 
 #endif

@@ -1,6 +1,7 @@
 #include "vtkGDRMeshingRun.h"
 
 #include "vtkAlgorithm.h"
+#include "vtkErrorCode.h"
 #include "vtkObject.h"
 #include "vtkOutputWindow.h"
 #include "vtkSetGet.h"
@@ -13,10 +14,32 @@
 #include <new>
 #include <string>
 
+namespace
+{
+// vtkAlgorithm::SetErrorCode is protected; a member pointer taken through a derived class
+// reaches it for any algorithm, so that this one helper sets it for every filter.
+struct ErrorCodeAccess : vtkAlgorithm
+{
+  static void Set(vtkAlgorithm* algorithm, unsigned long code)
+  {
+    (algorithm->*(&ErrorCodeAccess::SetErrorCode))(code);
+  }
+};
+}
+
 //------------------------------------------------------------------------------
 vtkGDRMeshingRun::vtkGDRMeshingRun(vtkAlgorithm* filter)
   : Filter(filter)
 {
+  ErrorCodeAccess::Set(this->Filter, vtkErrorCode::NoError);
+}
+
+//------------------------------------------------------------------------------
+void vtkGDRMeshingRun::Failed()
+{
+  // Scripts tell a failed run from an empty result by the error code (gpudelaunay's
+  // update helpers raise on it).
+  ErrorCodeAccess::Set(this->Filter, vtkErrorCode::UserError);
 }
 
 //------------------------------------------------------------------------------
@@ -30,6 +53,7 @@ bool vtkGDRMeshingRun::SelectBackend(int requested, gdr::Backend& backend)
         vtkErrorWithObjectMacro(this->Filter,
           << "Backend is GPU but no usable CUDA device was found ("
             << gdr::device_info().reason << "). Choose Auto or CPU.");
+        this->Failed();
         return false;
       }
       backend = gdr::Backend::Gpu;
@@ -105,5 +129,6 @@ bool vtkGDRMeshingRun::Execute(const std::function<void()>& work)
   {
     vtkErrorWithObjectMacro(this->Filter, << "Meshing failed with an unknown error.");
   }
+  this->Failed();
   return false;
 }

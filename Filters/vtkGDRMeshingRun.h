@@ -7,7 +7,9 @@
  * GPU without a device is an error), builds the engine callbacks (progress through
  * UpdateProgress, abort through CheckAbort, engine notes as warnings) and runs the
  * engine call, mapping gdr::Error and any other exception to vtkErrorMacro.
- * All three meshing filters use it the same way.
+ * All three meshing filters and the readers use it the same way. It resets the
+ * algorithm's error code when constructed and sets it to vtkErrorCode::UserError when it
+ * reports a failure, so that scripts can tell a failed run from an empty result.
  */
 
 #ifndef vtkGDRMeshingRun_h
@@ -49,6 +51,8 @@ public:
   bool WasAborted() const { return this->Aborted; }
 
 private:
+  void Failed();
+
   vtkAlgorithm* Filter;
   bool Aborted = false;
 };

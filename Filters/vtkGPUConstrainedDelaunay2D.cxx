@@ -102,6 +102,8 @@ int vtkGPUConstrainedDelaunay2D::RequestData(vtkInformation* vtkNotUsed(request)
   options.max_steiner_points = static_cast<long long>(this->MaximumSteinerPoints);
   options.mode = this->Mode == CHEW ? gdr::EncroachMode::Chew : gdr::EncroachMode::Ruppert;
   options.remove_exterior = this->RemoveExterior != 0;
+  options.off_centers = this->OffCenters != 0;
+  options.refine = this->CDTOnly == 0;
   options.strict_input = this->StrictInput != 0;
 
   vtkGDRMeshingRun run(this);
@@ -159,6 +161,8 @@ void vtkGPUConstrainedDelaunay2D::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Backend: "
      << (this->Backend == GPU ? "GPU" : (this->Backend == CPU ? "CPU" : "Auto")) << "\n";
   os << indent << "RemoveExterior: " << (this->RemoveExterior ? "On" : "Off") << "\n";
+  os << indent << "OffCenters: " << (this->OffCenters ? "On" : "Off") << "\n";
+  os << indent << "CDTOnly: " << (this->CDTOnly ? "On" : "Off") << "\n";
   os << indent << "StrictInput: " << (this->StrictInput ? "On" : "Off") << "\n";
   os << indent << "TriangleSwitches: " << this->TriangleSwitches << "\n";
 }

@@ -62,26 +62,29 @@ public:
 
   ///@{
   /**
-   * Lower bound on the angles of the output triangles, in degrees. 0 disables the
-   * angle criterion. Clamped to [0, 34]. Default 20.
+   * Lower bound on the angles of the output triangles, in degrees, in [0, 34]. 0 disables
+   * the angle criterion. Default 20. A value out of range is refused with an error when
+   * the filter runs, as gdr 2d refuses it (no silent clamping).
    */
-  vtkSetClampMacro(MinimumAngle, double, 0.0, 34.0);
+  vtkSetMacro(MinimumAngle, double);
   vtkGetMacro(MinimumAngle, double);
   ///@}
 
   ///@{
   /**
    * Upper bound on the edge length of the output triangles; 0 (default) disables it.
+   * Negative values are refused with an error when the filter runs.
    */
-  vtkSetClampMacro(MaximumEdgeLength, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(MaximumEdgeLength, double);
   vtkGetMacro(MaximumEdgeLength, double);
   ///@}
 
   ///@{
   /**
    * Upper bound on the area of the output triangles; 0 (default) disables it.
+   * Negative values are refused with an error when the filter runs.
    */
-  vtkSetClampMacro(MaximumArea, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(MaximumArea, double);
   vtkGetMacro(MaximumArea, double);
   ///@}
 
@@ -90,9 +93,10 @@ public:
    * Cap on the number of Steiner points; refinement stops cleanly when it is reached.
    * -1 (default) means an automatic cap, so that a run that cascades (above 30 degrees) or
    * a thin domain ends: 1000 times the input points, at least 1M and at least 4 times the
-   * triangles the size bounds ask for, and no more than memory holds.
+   * triangles the size bounds ask for, and no more than memory holds. Values below -1
+   * are refused with an error when the filter runs.
    */
-  vtkSetClampMacro(MaximumSteinerPoints, vtkIdType, -1, VTK_ID_MAX);
+  vtkSetMacro(MaximumSteinerPoints, vtkIdType);
   vtkGetMacro(MaximumSteinerPoints, vtkIdType);
   ///@}
 
@@ -104,6 +108,27 @@ public:
   vtkGetMacro(Mode, int);
   void SetModeToRuppert() { this->SetMode(RUPPERT); }
   void SetModeToChew() { this->SetMode(CHEW); }
+  ///@}
+
+  ///@{
+  /**
+   * Insert Ungor's off-centres instead of circumcentres: the same quality with fewer
+   * Steiner points (gdr 2d --off-centers). Default off.
+   */
+  vtkSetMacro(OffCenters, vtkTypeBool);
+  vtkGetMacro(OffCenters, vtkTypeBool);
+  vtkBooleanMacro(OffCenters, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * Only the constrained Delaunay triangulation of the input, without refinement (gdr 2d
+   * --cdt-only): the quality bounds are not applied, IsBad still marks the triangles
+   * below MinimumAngle. Default off.
+   */
+  vtkSetMacro(CDTOnly, vtkTypeBool);
+  vtkGetMacro(CDTOnly, vtkTypeBool);
+  vtkBooleanMacro(CDTOnly, vtkTypeBool);
   ///@}
 
   ///@{
@@ -172,6 +197,8 @@ protected:
   int Mode = RUPPERT;
   int Backend = AUTO;
   vtkTypeBool RemoveExterior = false;
+  vtkTypeBool OffCenters = false;
+  vtkTypeBool CDTOnly = false;
   vtkTypeBool StrictInput = false;
   std::string TriangleSwitches;
 

@@ -2,6 +2,18 @@
 # Included from the top-level CMakeLists.txt once ParaView 5.11 has been found.
 include(GNUInstallDirs)
 
+# The plugin's GUI part links ParaView's Qt libraries, whose link interfaces name Qt, X11,
+# GLEW and other packages: found here, in the scope where ParaView's targets were imported.
+if(PARAVIEW_USE_QT)
+  find_package(ParaView QUIET COMPONENTS pqComponents)
+  list(APPEND CMAKE_MODULE_PATH "${VTK_DIR}")  # VTK's own Find modules (NetCDF, GLEW...)
+  find_package(Qt5 QUIET COMPONENTS OpenGL)
+  foreach(_gdr_package IN ITEMS X11 GLEW LibXml2 Boost NetCDF)
+    find_package(${_gdr_package} QUIET)
+  endforeach()
+  find_package(HDF5 QUIET COMPONENTS C HL)
+endif()
+
 # Shared libraries: the ParaView plugin and the Python package load one and the same
 # filter library (VTK's module and plugin functions follow BUILD_SHARED_LIBS).
 set(_gdr_saved_build_shared_libs "${BUILD_SHARED_LIBS}")
@@ -55,7 +67,8 @@ file(GENERATE OUTPUT "${_gdr_python_init}" CONTENT
 vtkGPUQualityTetMesh) and NumPy (refine_2d).\"\"\"
 import vtkmodules.vtkCommonExecutionModel  # noqa: F401  (base classes)
 from .GPUDelaunayFilters import *  # noqa: F401,F403
-from .meshing import MeshingError, MeshingWarning, MeshResult, refine_2d  # noqa: F401
+from .meshing import (MeshingError, MeshingWarning, MeshResult, refine_2d,  # noqa: F401
+                      update, update_pipeline)
 ")
 configure_file("${PROJECT_SOURCE_DIR}/Python/gpudelaunay/meshing.py"
                "${_gdr_python_package}/meshing.py" COPYONLY)

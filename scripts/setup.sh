@@ -32,7 +32,8 @@ step() { printf '\n== %s\n' "$*"; }
 PACKAGES=(
   cmake ninja-build g++ libgtest-dev libgmp-dev
   paraview-dev python3-paraview mpi-default-dev libdouble-conversion-dev
-  libcgal-dev libtet1.5-dev tetgen libtbb-dev xvfb xauth
+  libcgal-dev libtet1.5-dev tetgen libtbb-dev xvfb xauth qtbase5-dev libglew-dev
+  libnetcdf-dev libhdf5-dev libqt5opengl5-dev xdotool imagemagick
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

@@ -19,7 +19,8 @@ from vtkmodules.util.vtkConstants import VTK_STRING
 from vtkmodules.vtkCommonCore import vtkCommand, vtkPoints
 from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
 
-__all__ = ["MeshingError", "MeshingWarning", "MeshResult", "refine_2d"]
+__all__ = ["MeshingError", "MeshingWarning", "MeshResult", "refine_2d", "update",
+           "update_pipeline"]
 
 # The core's status names (gdr/error.h), as the filters prefix their error messages.
 _STATUSES = ("InvalidInput", "SelfIntersectingInput", "OutOfDeviceMemory", "NoDevice",
@@ -63,9 +64,10 @@ def _message_text(text):
     return text.strip()
 
 
-def _run(algorithm):
-    """Updates `algorithm`, turning its errors into a MeshingError and its warnings into
-    MeshingWarning (VTK prints neither while they are observed)."""
+def _run(algorithm, work=None):
+    """Updates `algorithm` (or runs `work`, which updates it), turning its errors into a
+    MeshingError and its warnings into MeshingWarning (VTK prints neither while they are
+    observed). The filters and readers also set the error code on failure."""
     errors = []
 
     @calldata_type(VTK_STRING)
@@ -85,10 +87,14 @@ def _run(algorithm):
             (algorithm, algorithm.AddObserver(vtkCommand.WarningEvent, on_warning)),
             (executive, executive.AddObserver(vtkCommand.ErrorEvent, on_executive_error))]
     try:
-        algorithm.Update()
+        (work or algorithm.Update)()
     finally:
         for obj, tag in tags:
             obj.RemoveObserver(tag)
+    if not errors and algorithm.GetErrorCode() != 0:
+        # Not run again (nothing changed since it failed): its error was reported then.
+        errors.append("%s failed (error code %d) when it last ran" % (
+            algorithm.GetClassName(), algorithm.GetErrorCode()))
     if errors:
         message = errors[0]
         status, _, rest = message.partition(": ")
@@ -218,3 +224,27 @@ def refine_2d(points, segments=None, holes=None, min_angle=20.0, max_area=None,
             result[key] = numpy_support.vtk_to_numpy(array).copy()
     result["stats"] = _field_values(out.GetFieldData())
     return result
+
+
+def update(algorithm):
+    """algorithm.Update() for the VTK filters and readers of this package; raises
+    MeshingError (the core's status and message) when the run failed: bad input or
+    parameters, Backend GPU without a usable GPU, an unreadable file. A successful run
+    with an empty result (empty input), or an aborted run, does not raise."""
+    _run(algorithm)
+
+
+def update_pipeline(proxy, time=None):
+    """paraview.simple: proxy.UpdatePipeline(time), raising MeshingError when the filter
+    or reader failed, so that a pvpython script tells a failure from an empty result.
+    Needs a builtin session (pvpython or pvbatch without a server: the filter runs in
+    this process)."""
+    algorithm = proxy.GetClientSideObject()
+    if algorithm is None:
+        raise RuntimeError("update_pipeline needs a builtin session (the filter in this process)")
+    if time is None:
+        # With a time the proxy always asks its pipeline to update (without one it skips
+        # the request when nothing changed since an earlier, failed UpdatePipeline).
+        from paraview.simple import GetTimeKeeper
+        time = GetTimeKeeper().Time
+    _run(algorithm, lambda: proxy.UpdatePipeline(time))

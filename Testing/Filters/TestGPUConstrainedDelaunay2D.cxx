@@ -381,22 +381,80 @@ void TestSizeBounds()
   CHECK(steiner && steiner->GetComponent(0, 0) <= 5);
 }
 
-void TestClamping()
+// Bounds out of range are refused with the CLI's message, not clamped silently; the
+// output is empty and the error code tells a script that the run failed.
+void TestOutOfRange()
 {
   vtkNew<vtkGPUConstrainedDelaunay2D> filter;
   CHECK(filter->GetMinimumAngle() == 20);
   CHECK(filter->GetMaximumSteinerPoints() == -1);
   CHECK(filter->GetBackend() == vtkGPUConstrainedDelaunay2D::AUTO);
-  filter->SetMinimumAngle(50);
-  CHECK(filter->GetMinimumAngle() == 34);
-  filter->SetMinimumAngle(-3);
-  CHECK(filter->GetMinimumAngle() == 0);
-  filter->SetMaximumArea(-1);
-  CHECK(filter->GetMaximumArea() == 0);
-  filter->SetMaximumSteinerPoints(-7);
-  CHECK(filter->GetMaximumSteinerPoints() == -1);
   filter->SetBackend(9);
   CHECK(filter->GetBackend() == vtkGPUConstrainedDelaunay2D::CPU);
+
+  EventLog log;
+  log.Watch(filter);
+  filter->SetInputData(ReadPlate());
+  filter->SetMinimumAngle(40);
+  CHECK(filter->GetMinimumAngle() == 40);
+  filter->Update();
+  CHECK(log.ErrorContains("InvalidInput: minimum angle 40"));
+  CHECK(log.ErrorContains("out of range [0, 34]"));
+  CHECK(filter->GetOutput()->GetNumberOfCells() == 0);
+  CHECK(filter->GetErrorCode() != 0);
+
+  const std::pair<std::function<void()>, const char*> cases[] = {
+    { [&] { filter->SetMaximumArea(-1); }, "maximum area" },
+    { [&] { filter->SetMaximumEdgeLength(-1); }, "maximum edge length" },
+    { [&] { filter->SetMaximumSteinerPoints(-7); }, "maximum Steiner points" },
+  };
+  for (const auto& c : cases)
+  {
+    filter->SetMinimumAngle(20);
+    filter->SetMaximumArea(0);
+    filter->SetMaximumEdgeLength(0);
+    filter->SetMaximumSteinerPoints(-1);
+    c.first();
+    log.Clear();
+    filter->Update();
+    CHECK(log.ErrorContains(c.second));
+    CHECK(filter->GetOutput()->GetNumberOfCells() == 0);
+  }
+
+  // A good run afterwards clears the error code.
+  filter->SetMaximumSteinerPoints(-1);
+  log.Clear();
+  filter->Update();
+  CHECK(log.Errors.empty());
+  CHECK(filter->GetErrorCode() == 0);
+  CHECK(filter->GetOutput()->GetNumberOfCells() > 0);
+}
+
+// OffCenters meshes with fewer Steiner points at the same bound; CDTOnly inserts none.
+void TestOffCentersAndCDTOnly()
+{
+  vtkNew<vtkGPUConstrainedDelaunay2D> filter;
+  filter->SetInputData(ReadPlate());
+  filter->SetBackendToCPU();
+  filter->RemoveExteriorOn();
+  filter->SetMinimumAngle(33);
+  auto steinerPoints = [&]()
+  {
+    filter->Update();
+    vtkDataArray* a = filter->GetOutput()->GetFieldData()->GetArray("SteinerPoints");
+    return a ? a->GetComponent(0, 0) : -1.0;
+  };
+  const double circumcenters = steinerPoints();
+  filter->OffCentersOn();
+  const double offCenters = steinerPoints();
+  CheckArrays(filter);
+  vtkDataArray* minAngle = filter->GetOutput()->GetCellData()->GetArray("MinAngle");
+  CHECK(minAngle && minAngle->GetRange()[0] >= 33 - 1e-9);
+  CHECK(offCenters > 0 && offCenters < circumcenters);
+  filter->OffCentersOff();
+  filter->CDTOnlyOn();
+  CHECK(steinerPoints() == 0);
+  CHECK(filter->GetOutput()->GetNumberOfPoints() == ReadPlate()->GetNumberOfPoints());
 }
 
 void TestEmptyInput()
@@ -517,7 +575,8 @@ int main(int argc, char* argv[])
     { "Plate", TestPlate },
     { "LinesAndPoints", TestLinesAndPoints },
     { "SizeBounds", TestSizeBounds },
-    { "Clamping", TestClamping },
+    { "OutOfRange", TestOutOfRange },
+    { "OffCentersAndCDTOnly", TestOffCentersAndCDTOnly },
     { "EmptyInput", TestEmptyInput },
     { "CrossingLines", TestCrossingLines },
     { "Abort", TestAbort },

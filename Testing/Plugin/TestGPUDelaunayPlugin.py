@@ -92,6 +92,8 @@ def main():
     if hasattr(view, "UseColorPaletteForBackground"):
         view.UseColorPaletteForBackground = 0
     display = Show(mesh, view)
+    # The domain in one colour, without the edges the plugin shows by default.
+    display.SetRepresentationType("Surface")
     ColorBy(display, None)
     display.AmbientColor = display.DiffuseColor = [0.2, 0.3, 0.6]
     view.CameraPosition = [4.5, 3.0, 20.0]

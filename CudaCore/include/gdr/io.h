@@ -40,7 +40,7 @@ Surface read_ply(const std::string& path);
 // count back from the last vertex read); everything else skipped.
 Surface read_obj(const std::string& path);
 // Any of the surface formats above, by extension, in any letter case (.off, .stl, .ply,
-// .obj, .poly, .smesh).
+// .obj, .poly, .smesh). A TetGen .node gives its points alone (no facets).
 Surface read_surface(const std::string& path);
 // The files read_surface(path) may read: `path`, and for a .poly or .smesh the .node beside
 // it (where a file whose point section is empty takes its points from).
@@ -52,10 +52,13 @@ std::vector<std::string> surface_input_files(const std::string& path);
 // TetMesh tetrahedra are positive (orient3d > 0) as gdr/validate.h defines.
 TetMesh read_tetgen_mesh(const std::string& node_path, const std::string& ele_path);
 
-// Reads any supported input by extension: .poly (2D Triangle or 3D TetGen by its header),
-// .node, .off, .stl, .ply, .obj, .smesh.
+// Reads any supported input by extension: .poly and .node (2D Triangle or 3D TetGen by the
+// dimension in their header), .off, .stl, .ply, .obj, .smesh.
 enum class InputKind { Pslg2d, Surface3d };
 InputKind detect_input_kind(const std::string& path);
+// 2 for a Triangle .ele (3 or 6 nodes per triangle), 3 for a TetGen .ele (4 or 10 per
+// tetrahedron), from its header.
+int element_file_dimension(const std::string& ele_path);
 
 // Named per-element arrays attached to an output file.
 struct DataArray {

@@ -313,8 +313,13 @@ Surface read_surface(const std::string& path) {
   if (ext == ".ply") return read_ply(path);
   if (ext == ".obj") return read_obj(path);
   if (ext == ".poly" || ext == ".smesh") return read_tetgen_poly(path);
+  if (ext == ".node") {  // TetGen points alone: a surface without facets
+    Surface surface;
+    surface.points = to_points3(read_node_file(path, 3));
+    return surface;
+  }
   throw Error(Status::IoError, path + ": unsupported surface format '" + ext +
-                                   "' (expected .off, .stl, .ply, .obj, .poly or .smesh)");
+                                   "' (expected .off, .stl, .ply, .obj, .poly, .smesh or .node)");
 }
 
 }  // namespace gdr::io

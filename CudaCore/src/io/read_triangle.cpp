@@ -123,10 +123,9 @@ TriMesh read_triangle_mesh(const std::string& node_path, const std::string& ele_
 
 InputKind detect_input_kind(const std::string& path) {
   const std::string ext = extension_of(path);
-  if (ext == ".node") return InputKind::Pslg2d;
   if (ext == ".off" || ext == ".stl" || ext == ".ply" || ext == ".obj" || ext == ".smesh")
     return InputKind::Surface3d;
-  if (ext != ".poly")
+  if (ext != ".poly" && ext != ".node")
     throw Error(Status::IoError, path + ": unsupported input format '" + ext +
                                      "' (expected .poly, .node, .off, .stl, .ply, .obj or .smesh)");
   TextFile file(path);
@@ -136,6 +135,17 @@ InputKind detect_input_kind(const std::string& path) {
   if (dim == 2) return InputKind::Pslg2d;
   if (dim == 3) return InputKind::Surface3d;
   file.fail("dimension must be 2 or 3, found " + std::to_string(dim));
+}
+
+int element_file_dimension(const std::string& ele_path) {
+  TextFile file(ele_path);
+  Tokens t;
+  file.expect(t, 2, "the element count header");
+  const long long corners = file.integer(t[1], "nodes per element");
+  if (corners == 3 || corners == 6) return 2;   // Triangle
+  if (corners == 4 || corners == 10) return 3;  // TetGen
+  file.fail("nodes per element must be 3 or 6 (Triangle) or 4 or 10 (TetGen), found " +
+            std::to_string(corners));
 }
 
 }  // namespace gdr::io

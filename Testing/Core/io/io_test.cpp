@@ -125,6 +125,26 @@ TEST(DetectInputKind, ByExtensionAndHeader) {
   EXPECT_EQ(io::detect_input_kind(kData + "/tet.smesh"), io::InputKind::Surface3d);
   EXPECT_NE(io_error([] { io::detect_input_kind("mesh.xyz"); }).find("unsupported"),
             std::string::npos);
+  // A .node is Triangle's (2D) or TetGen's (3D) by its header, like a .poly.
+  EXPECT_EQ(io::detect_input_kind(kData + "/lshape_tetgen.node"), io::InputKind::Surface3d);
+}
+
+TEST(ElementFileDimension, TriangleOrTetgenByNodesPerElement) {
+  EXPECT_EQ(io::element_file_dimension(kData + "/lshape_tetgen.ele"), 3);
+  const std::string tri = kOut + "/two_triangles.ele";
+  std::ofstream(tri) << "2 3 0\n1 1 2 3\n2 1 3 4\n";
+  EXPECT_EQ(io::element_file_dimension(tri), 2);
+  const std::string bad = kOut + "/five_corners.ele";
+  std::ofstream(bad) << "1 5 0\n1 1 2 3 4 5\n";
+  EXPECT_NE(io_error([&] { io::element_file_dimension(bad); }).find("nodes per element"),
+            std::string::npos);
+}
+
+TEST(ReadSurface, TetgenNodeGivesPointsWithoutFacets) {
+  const Surface s = io::read_surface(kData + "/lshape_tetgen.node");
+  EXPECT_EQ(s.points.size(), 12u);
+  EXPECT_TRUE(s.triangles.empty());
+  EXPECT_EQ(s.points[1].x, 2.0);
 }
 
 struct Broken {

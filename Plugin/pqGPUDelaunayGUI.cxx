@@ -1,0 +1,276 @@
+#include "pqGPUDelaunayGUI.h"
+
+#include "pqApplicationCore.h"
+#include "pqCoreUtilities.h"
+#include "pqDataRepresentation.h"
+#include "pqOutputPort.h"
+#include "pqPipelineSource.h"
+#include "pqProgressManager.h"
+#include "pqProgressWidget.h"
+#include "pqServerManagerModel.h"
+#include "pqView.h"
+#include "vtkAlgorithm.h"
+#include "vtkInformation.h"
+#include "vtkWeakPointer.h"
+#include "vtkCommand.h"
+#include "vtkSMPropertyHelper.h"
+#include "vtkSMProxy.h"
+#include "vtkSMSettings.h"
+
+#include <QApplication>
+#include <QEvent>
+#include <QMouseEvent>
+#include <QTimer>
+#include <QToolButton>
+
+#include <cstring>
+#include <memory>
+
+namespace
+{
+bool IsMeshingFilter(vtkObject* object)
+{
+  return object &&
+    (object->IsA("vtkGPUConstrainedDelaunay2D") || object->IsA("vtkGPUQualityTetMesh"));
+}
+
+// Viridis over [0, top] as a ParaView RGBPoints list (x r g b ...).
+QString Viridis(double top)
+{
+  const double c[5][3] = { { 0.267, 0.005, 0.329 }, { 0.231, 0.322, 0.545 },
+    { 0.128, 0.567, 0.551 }, { 0.369, 0.789, 0.383 }, { 0.993, 0.906, 0.144 } };
+  QStringList values;
+  for (int i = 0; i < 5; ++i)
+  {
+    values << QString::number(top * i / 4) << QString::number(c[i][0])
+           << QString::number(c[i][1]) << QString::number(c[i][2]);
+  }
+  return values.join(", ");
+}
+}
+
+//-----------------------------------------------------------------------------
+pqGPUDelaunayGUI::pqGPUDelaunayGUI(QObject* parent)
+  : Superclass(parent)
+{
+}
+
+//-----------------------------------------------------------------------------
+void pqGPUDelaunayGUI::startup()
+{
+  // After pqProgressManager's filter, so that this one sees events first (see eventFilter).
+  QApplication::instance()->installEventFilter(this);
+  pqApplicationCore* core = pqApplicationCore::instance();
+  pqServerManagerModel* model = core->getServerManagerModel();
+  QObject::connect(model, &pqServerManagerModel::sourceAdded, this,
+    &pqGPUDelaunayGUI::onSourceAdded);
+  QObject::connect(model, &pqServerManagerModel::representationAdded, this,
+    &pqGPUDelaunayGUI::onRepresentationAdded);
+  for (pqPipelineSource* source : model->findItems<pqPipelineSource*>())
+  {
+    this->onSourceAdded(source);
+  }
+  pqProgressManager* progress = core->getProgressManager();
+  QObject::connect(progress, &pqProgressManager::progress, this,
+    [this](const QString& text, int) { this->onProgress(text); });
+  QObject::connect(progress, &pqProgressManager::abort, this, &pqGPUDelaunayGUI::onAbort);
+
+  // Fixed colour ranges for the quality arrays, at a priority below the user's settings
+  // (and not written to the user's settings file).
+  const QString lut = "\"%1\": { \"PVLookupTable\": { \"RGBPoints\": [%2], "
+                      "\"AutomaticRescaleRangeMode\": -1 } }";
+  const QString json = "{ \"array_lookup_tables\": { " + lut.arg("MinAngle", Viridis(60.0)) +
+    ", " + lut.arg("MinDihedralAngle", Viridis(70.5)) + " } }";
+  vtkSMSettings::GetInstance()->AddCollectionFromString(json.toStdString(), 0.0);
+}
+
+//-----------------------------------------------------------------------------
+void pqGPUDelaunayGUI::onSourceAdded(pqPipelineSource* source)
+{
+  this->Watch(source);
+}
+
+//-----------------------------------------------------------------------------
+vtkAlgorithm* pqGPUDelaunayGUI::Watch(pqPipelineSource* source)
+{
+  vtkObject* object = vtkObject::SafeDownCast(source->getProxy()->GetClientSideObject());
+  if (!IsMeshingFilter(object))
+  {
+    return nullptr; // not ours, not a builtin session, or its filter not created yet
+  }
+  if (!this->Watched.contains(object))
+  {
+    this->Watched.insert(object);
+    pqCoreUtilities::connect(
+      object, vtkCommand::StartEvent, this, SLOT(onFilterStart(vtkObject*)));
+    pqCoreUtilities::connect(object, vtkCommand::EndEvent, this, SLOT(onFilterEnd(vtkObject*)));
+  }
+  return vtkAlgorithm::SafeDownCast(object);
+}
+
+//-----------------------------------------------------------------------------
+void pqGPUDelaunayGUI::onFilterStart(vtkObject* caller)
+{
+  this->Running = vtkAlgorithm::SafeDownCast(caller);
+  pqServerManagerModel* model = pqApplicationCore::instance()->getServerManagerModel();
+  this->RunningProxy.clear();
+  for (pqPipelineSource* source : model->findItems<pqPipelineSource*>())
+  {
+    if (source->getProxy()->GetClientSideObject() == caller)
+    {
+      this->RunningProxy = source;
+    }
+  }
+  pqApplicationCore::instance()->getProgressManager()->setEnableAbort(true);
+}
+
+//-----------------------------------------------------------------------------
+void pqGPUDelaunayGUI::onFilterEnd(vtkObject* caller)
+{
+  if (caller != this->Running)
+  {
+    return;
+  }
+  pqApplicationCore::instance()->getProgressManager()->setEnableAbort(false);
+  vtkAlgorithm* algorithm = this->Running;
+  this->Running = nullptr;
+  if (!algorithm->GetAbortExecute())
+  {
+    return;
+  }
+  // VTK marks an aborted output ABORTED and executes it again at the next update, and
+  // ParaView 5.11 updates after every render: the run would start over (or, with the
+  // abort flag still set, abort again on every render, endlessly). The aborted run leaves
+  // an empty output that stays until the user applies again: the Apply button is lit,
+  // and applying runs the filter again even without a changed property.
+  for (int port = 0; port < algorithm->GetNumberOfOutputPorts(); ++port)
+  {
+    algorithm->GetOutputInformation(port)->Remove(vtkAlgorithm::ABORTED());
+  }
+  algorithm->SetAbortOutput(false);
+  algorithm->SetAbortExecute(0);
+  // Once the Apply that ran it has finished (it marks the proxy unmodified at its end).
+  QPointer<pqProxy> proxy = this->RunningProxy;
+  vtkWeakPointer<vtkAlgorithm> weak = algorithm;
+  QTimer::singleShot(0, this,
+    [this, proxy, weak]()
+    {
+      if (!proxy)
+      {
+        return;
+      }
+      proxy->setModifiedState(pqProxy::MODIFIED);
+      auto connection = std::make_shared<QMetaObject::Connection>();
+      *connection = QObject::connect(proxy, &pqProxy::modifiedStateChanged, this,
+        [proxy, weak, connection](pqServerManagerModelItem*)
+        {
+          if (proxy && proxy->modifiedState() == pqProxy::UNMODIFIED) // applied again
+          {
+            if (weak)
+            {
+              weak->Modified();
+            }
+            QObject::disconnect(*connection);
+          }
+        });
+    });
+}
+
+//-----------------------------------------------------------------------------
+void pqGPUDelaunayGUI::onProgress(const QString& text)
+{
+  if (!this->Running)
+  {
+    // A filter made in the GUI has no VTK object before its first Apply, so its start
+    // was not seen: recognise it by the progress text it reports.
+    pqServerManagerModel* model = pqApplicationCore::instance()->getServerManagerModel();
+    for (pqPipelineSource* source : model->findItems<pqPipelineSource*>())
+    {
+      vtkAlgorithm* algorithm = this->Watch(source);
+      if (algorithm && algorithm->GetProgressText() && text == algorithm->GetProgressText())
+      {
+        this->onFilterStart(algorithm);
+      }
+    }
+  }
+  if (!this->Running || this->InProcessEvents)
+  {
+    return;
+  }
+  // Paint the status bar and deliver a click on its abort button. The progress manager
+  // filters out key presses and clicks elsewhere while progress is shown.
+  this->InProcessEvents = true;
+  QApplication::processEvents();
+  this->InProcessEvents = false;
+}
+
+//-----------------------------------------------------------------------------
+void pqGPUDelaunayGUI::onAbort()
+{
+  if (this->Running)
+  {
+    this->Running->SetAbortExecuteAndUpdateTime();
+  }
+}
+
+//-----------------------------------------------------------------------------
+void pqGPUDelaunayGUI::onRepresentationAdded(pqRepresentation* representation)
+{
+  // The representation's input is set after it is added: look once the event is done.
+  QPointer<pqRepresentation> repr = representation;
+  QTimer::singleShot(0, this,
+    [repr]()
+    {
+      auto* data = qobject_cast<pqDataRepresentation*>(repr.data());
+      pqView* view = data ? data->getView() : nullptr;
+      pqOutputPort* port = data ? data->getOutputPortFromInput() : nullptr;
+      if (!view || !port || port->getPortNumber() != 1 ||
+        view->getViewType() != "XYBarChartView")
+      {
+        return;
+      }
+      const char* name = port->getSource()->getProxy()->GetXMLName();
+      const bool is2D = strcmp(name, "GPUConstrainedDelaunay2D") == 0;
+      if (!is2D && strcmp(name, "GPUQualityTetMesh") != 0)
+      {
+        return;
+      }
+      // The legend names the counted things instead of the column name.
+      vtkSMPropertyHelper label(data->getProxy(), "SeriesLabel");
+      label.Set(0, is2D ? "bin_values" : "DihedralAngleCount");
+      label.Set(1, is2D ? "triangles" : "dihedral angles");
+      data->getProxy()->UpdateVTKObjects();
+      vtkSMProxy* chart = view->getProxy();
+      vtkSMPropertyHelper(chart, "ChartTitle")
+        .Set(is2D ? "Minimum angle per triangle" : "Dihedral angles");
+      vtkSMPropertyHelper(chart, "BottomAxisTitle").Set("degrees");
+      vtkSMPropertyHelper(chart, "LeftAxisTitle").Set(is2D ? "triangles" : "dihedral angles");
+      chart->UpdateVTKObjects();
+      view->render();
+    });
+}
+
+//-----------------------------------------------------------------------------
+bool pqGPUDelaunayGUI::eventFilter(QObject* object, QEvent* event)
+{
+  // While progress is shown, pqProgressManager swallows mouse presses on every object not
+  // marked non-blockable. With Qt 5 a press reaches the top-level window (QWidgetWindow)
+  // before the widget under the cursor, and that window is not non-blockable, so the
+  // abort button never gets the press. A press over the enabled abort button while one
+  // of our filters runs is therefore taken here and turned into the abort.
+  if (!this->Running || event->type() != QEvent::MouseButtonPress)
+  {
+    return this->Superclass::eventFilter(object, event);
+  }
+  QWidget* main = pqCoreUtilities::mainWidget();
+  pqProgressWidget* progress = main ? main->findChild<pqProgressWidget*>() : nullptr;
+  QToolButton* abort = progress ? progress->abortButton() : nullptr;
+  const QPoint at = static_cast<QMouseEvent*>(event)->globalPos();
+  if (abort && abort->isEnabled() && abort->isVisible() &&
+    abort->rect().contains(abort->mapFromGlobal(at)))
+  {
+    pqApplicationCore::instance()->getProgressManager()->triggerAbort();
+    return true;
+  }
+  return this->Superclass::eventFilter(object, event);
+}

@@ -1,0 +1,205 @@
+// Tests of the Triangle / TetGen readers: what they read, and that the meshing filters take
+// their output as it is (holes and regions of the files included). Named tests, one ctest
+// entry each.
+#include "FilterTestSupport.h"
+#include "vtkGPUConstrainedDelaunay2D.h"
+#include "vtkGPUQualityTetMesh.h"
+#include "vtkTriangleTetGenMeshReader.h"
+#include "vtkTriangleTetGenReader.h"
+
+#include "vtkCellData.h"
+#include "vtkCellType.h"
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
+#include "vtkNew.h"
+#include "vtkPolyData.h"
+#include "vtkUnstructuredGrid.h"
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <string>
+
+namespace
+{
+using gdr_test::EventLog;
+const std::string kData = GDR_TEST_DATA;     // Data/
+const std::string kCliData = GDR_TEST_CLI_DATA; // Testing/CLI/data
+const std::string kOut = GDR_TEST_OUTPUT;
+
+double SumOf(vtkDataArray* a)
+{
+  double s = 0;
+  for (vtkIdType i = 0; a && i < a->GetNumberOfTuples(); ++i)
+  {
+    s += a->GetComponent(i, 0);
+  }
+  return s;
+}
+
+// Triangle .poly: segments as lines, the holes section as HoleSeeds, and the 2D filter
+// honours the hole without a HoleSeeds input.
+void TestTrianglePoly()
+{
+  vtkNew<vtkTriangleTetGenReader> reader;
+  reader->SetFileName((kData + "/square_hole.poly").c_str());
+  reader->Update();
+  vtkPolyData* pslg = reader->GetOutput();
+  CHECK(pslg->GetNumberOfPoints() == 8);
+  CHECK(pslg->GetNumberOfLines() == 8);
+  CHECK(pslg->GetNumberOfVerts() == 0);
+  double bounds[6];
+  pslg->GetBounds(bounds);
+  CHECK(bounds[1] == 4.0 && bounds[3] == 4.0 && bounds[4] == 0.0 && bounds[5] == 0.0);
+  vtkDataArray* holes = pslg->GetFieldData()->GetArray("HoleSeeds");
+  CHECK(holes && holes->GetNumberOfTuples() == 1 && holes->GetComponent(0, 0) == 2.0);
+
+  vtkNew<vtkGPUConstrainedDelaunay2D> mesher;
+  EventLog log;
+  log.Watch(mesher);
+  mesher->SetInputConnection(reader->GetOutputPort());
+  mesher->SetBackendToCPU();
+  mesher->RemoveExteriorOn();
+  mesher->Update();
+  CHECK(log.Errors.empty());
+  const double area = SumOf(mesher->GetOutput()->GetCellData()->GetArray("Area"));
+  CHECK(std::abs(area - 12.0) < 1e-9); // 4 x 4 minus the 2 x 2 hole
+}
+
+// A .node alone: isolated points become vertex cells.
+void TestTriangleNode()
+{
+  vtkNew<vtkTriangleTetGenReader> reader;
+  reader->SetFileName((kData + "/points_only.node").c_str());
+  reader->Update();
+  CHECK(reader->GetOutput()->GetNumberOfPoints() == 3);
+  CHECK(reader->GetOutput()->GetNumberOfVerts() == 3);
+}
+
+// TetGen .poly: quadrilateral facets become triangles grouped by FacetId; the region seed
+// (attribute 7, maximum volume 0.001) reaches the 3D filter through the field data.
+void TestTetGenPoly()
+{
+  vtkNew<vtkTriangleTetGenReader> reader;
+  reader->SetFileName((kCliData + "/box_region_volume.poly").c_str());
+  reader->Update();
+  vtkPolyData* surface = reader->GetOutput();
+  CHECK(surface->GetNumberOfPolys() == 12);
+  vtkDataArray* facet = surface->GetCellData()->GetArray("FacetId");
+  CHECK(facet != nullptr);
+  std::set<double> facets;
+  for (vtkIdType i = 0; facet && i < facet->GetNumberOfTuples(); ++i)
+  {
+    facets.insert(facet->GetComponent(i, 0));
+  }
+  CHECK(facets.size() == 6);
+  vtkDataArray* seeds = surface->GetFieldData()->GetArray("RegionSeeds");
+  vtkDataArray* attribute = surface->GetFieldData()->GetArray("RegionAttribute");
+  CHECK(seeds && seeds->GetNumberOfTuples() == 1 && attribute &&
+    attribute->GetComponent(0, 0) == 7);
+
+  vtkNew<vtkGPUQualityTetMesh> mesher;
+  EventLog log;
+  log.Watch(mesher);
+  mesher->SetInputConnection(reader->GetOutputPort());
+  mesher->SetBackendToCPU();
+  mesher->Update();
+  CHECK(log.Errors.empty());
+  vtkUnstructuredGrid* tets = mesher->GetOutput();
+  CHECK(tets->GetNumberOfCells() >= 2000);
+  vtkDataArray* region = tets->GetCellData()->GetArray("Region");
+  vtkDataArray* volume = tets->GetCellData()->GetArray("Volume");
+  CHECK(region && region->GetRange()[0] == 7 && region->GetRange()[1] == 7);
+  CHECK(volume && volume->GetRange()[1] <= 0.001);
+  CHECK(std::abs(SumOf(volume) - 2.0) < 1e-9);
+}
+
+// .off through the same reader; the 2D and 3D kinds of .poly are told apart by content.
+void TestOff()
+{
+  vtkNew<vtkTriangleTetGenReader> reader;
+  reader->SetFileName((kData + "/cube.off").c_str());
+  reader->Update();
+  CHECK(reader->GetOutput()->GetNumberOfPolys() == 12);
+  CHECK(vtkTriangleTetGenReader::CanReadFile("x.POLY") == 1);
+  CHECK(vtkTriangleTetGenReader::CanReadFile("x.vtp") == 0);
+}
+
+// .ele: TetGen tetrahedra and Triangle triangles, with the .node beside the .ele.
+void TestMeshFiles()
+{
+  vtkNew<vtkTriangleTetGenMeshReader> reader;
+  reader->SetFileName((kData + "/lshape_tetgen.ele").c_str());
+  reader->Update();
+  vtkUnstructuredGrid* tets = reader->GetOutput();
+  CHECK(tets->GetNumberOfCells() == 12);
+  CHECK(tets->GetCellType(0) == VTK_TETRA);
+  double volume = 0;
+  for (vtkIdType c = 0; c < tets->GetNumberOfCells(); ++c)
+  {
+    double p[4][3];
+    for (int k = 0; k < 4; ++k)
+    {
+      tets->GetPoint(tets->GetCell(c)->GetPointId(k), p[k]);
+    }
+    // VTK's orientation: (p1 - p0) x (p2 - p0) points towards p3, a positive volume.
+    double u[3], v[3], w[3];
+    for (int i = 0; i < 3; ++i)
+    {
+      u[i] = p[1][i] - p[0][i];
+      v[i] = p[2][i] - p[0][i];
+      w[i] = p[3][i] - p[0][i];
+    }
+    const double det = u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
+      u[2] * (v[0] * w[1] - v[1] * w[0]);
+    CHECK(det > 0);
+    volume += det / 6;
+  }
+  CHECK(std::abs(volume - 3.0) < 1e-12); // the L-shaped prism
+
+  std::ofstream(kOut + "/two_triangles.node") << "4 2 0 0\n1 0 0\n2 1 0\n3 1 1\n4 0 1\n";
+  std::ofstream(kOut + "/two_triangles.ele") << "2 3 0\n1 1 2 3\n2 1 3 4\n";
+  reader->SetFileName((kOut + "/two_triangles.ele").c_str());
+  reader->Update();
+  CHECK(reader->GetOutput()->GetNumberOfCells() == 2);
+  CHECK(reader->GetOutput()->GetCellType(0) == VTK_TRIANGLE);
+}
+
+// Malformed or missing files: an error naming the file and line, and an empty output.
+void TestBrokenFiles()
+{
+  vtkNew<vtkTriangleTetGenReader> reader;
+  EventLog log;
+  log.Watch(reader);
+  reader->SetFileName((kData + "/broken_truncated.poly").c_str());
+  reader->Update();
+  CHECK(log.ErrorContains("IoError"));
+  CHECK(log.ErrorContains("broken_truncated.poly:5"));
+  CHECK(reader->GetOutput()->GetNumberOfPoints() == 0);
+  log.Clear();
+  reader->SetFileName((kOut + "/no_such_file.poly").c_str());
+  reader->Update();
+  CHECK(log.ErrorContains("no_such_file.poly"));
+
+  vtkNew<vtkTriangleTetGenMeshReader> meshReader;
+  log.Clear();
+  log.Watch(meshReader);
+  meshReader->SetFileName((kData + "/broken_tet.ele").c_str());
+  meshReader->Update();
+  CHECK(!log.Errors.empty());
+  CHECK(meshReader->GetOutput()->GetNumberOfCells() == 0);
+}
+}
+
+int main(int argc, char* argv[])
+{
+  const std::map<std::string, std::function<void()>> tests = {
+    { "TrianglePoly", TestTrianglePoly },
+    { "TriangleNode", TestTriangleNode },
+    { "TetGenPoly", TestTetGenPoly },
+    { "Off", TestOff },
+    { "MeshFiles", TestMeshFiles },
+    { "BrokenFiles", TestBrokenFiles },
+  };
+  return gdr_test::RunNamedTest(argc, argv, tests);
+}
