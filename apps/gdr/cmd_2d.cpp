@@ -117,7 +117,7 @@ struct Args2d {
 };
 
 bool output_extension_supported(const std::string& path) {
-  const std::string ext = std::filesystem::path(path).extension().string();
+  const std::string ext = lower_extension(path);
   return ext == ".vtu" || ext == ".vtp" || ext == ".vtk" || ext == ".node" || ext == ".ele";
 }
 

@@ -98,7 +98,7 @@ struct ArgsTet {
 };
 
 bool output_extension_supported(const std::string& path) {
-  const std::string ext = std::filesystem::path(path).extension().string();
+  const std::string ext = lower_extension(path);
   return ext == ".vtu" || ext == ".mesh" || ext == ".node" || ext == ".ele" || ext == ".face";
 }
 

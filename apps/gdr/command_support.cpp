@@ -1,5 +1,6 @@
 #include "command_support.h"
 
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 
@@ -21,6 +22,12 @@ std::string single_input(const std::string& command, const std::vector<std::stri
   if (positional.empty()) throw UsageError(command, "missing INPUT file");
   if (positional.size() > 1) throw UsageError(command, "unexpected argument '" + positional[1] + "'");
   return positional[0];
+}
+
+std::string lower_extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
 }
 
 std::string backend_line(Backend used, const std::string& device_name) {

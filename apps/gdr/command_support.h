@@ -51,6 +51,9 @@ Backend parse_backend(const std::string& command, const std::string& value);
 // The one INPUT operand of a command line (UsageError when missing or not alone).
 std::string single_input(const std::string& command, const std::vector<std::string>& positional);
 
+// A file name's extension in lower case (".VTU" is ".vtu", as the readers and writers take it).
+std::string lower_extension(const std::string& path);
+
 // "gpu (device name)" or "cpu (OpenMP, N threads)", for a run's statistics.
 std::string backend_line(Backend used, const std::string& device_name);
 
