@@ -56,7 +56,33 @@ void append_number(std::string& out, long long v) {
   out.append(buf, r.ptr);
 }
 
-TextFile::TextFile(const std::string& path) : path_(path), data_(read_file_bytes(path)) {}
+namespace {
+
+// A token as messages show it: bytes outside printable ASCII as \xNN, and at most 40 of them.
+std::string shown(std::string_view token) {
+  std::string out;
+  for (std::size_t i = 0; i < token.size() && i < 40; ++i) {
+    const unsigned char c = static_cast<unsigned char>(token[i]);
+    if (c >= 32 && c < 127) {
+      out += static_cast<char>(c);
+    } else {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02X", c);
+      out += buf;
+    }
+  }
+  if (token.size() > 40) out += "...";
+  return out;
+}
+
+}  // namespace
+
+// Text conventions other tools write are read as such: a UTF-8 byte order mark is skipped,
+// CR-only line ends (classic Mac) are line ends. (A NUL byte in a text line: next().)
+TextFile::TextFile(const std::string& path) : path_(path), data_(read_file_bytes(path)) {
+  if (data_.compare(0, 3, "\xEF\xBB\xBF") == 0) data_.erase(0, 3);
+  if (data_.find('\n') == std::string::npos) std::replace(data_.begin(), data_.end(), '\r', '\n');
+}
 
 bool TextFile::next(Tokens& tokens) {
   tokens.clear();
@@ -66,6 +92,8 @@ bool TextFile::next(Tokens& tokens) {
     if (end == std::string::npos) end = data_.size();
     std::string_view text(data_.data() + pos_, end - pos_);
     pos_ = end + 1;
+    if (text.find('\0') != std::string_view::npos)
+      fail("contains a NUL byte: not a text file (binary or damaged)");
     const std::size_t hash = text.find('#');
     if (hash != std::string_view::npos) text = text.substr(0, hash);
     std::size_t i = 0;
@@ -99,7 +127,7 @@ long long TextFile::integer(std::string_view token, const std::string& what) con
   long long value = 0;
   const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
   if (ec != std::errc() || end != token.data() + token.size())
-    fail("bad integer '" + std::string(token) + "' for " + what);
+    fail("bad integer '" + shown(token) + "' for " + what);
   return value;
 }
 
@@ -108,8 +136,8 @@ double TextFile::real(std::string_view token, const std::string& what) const {
   double value = 0;
   const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
   if (ec != std::errc() || end != token.data() + token.size())
-    fail("bad number '" + std::string(token) + "' for " + what);
-  if (!std::isfinite(value)) fail("non-finite value '" + std::string(token) + "' for " + what);
+    fail("bad number '" + shown(token) + "' for " + what);
+  if (!std::isfinite(value)) fail("non-finite value '" + shown(token) + "' for " + what);
   return value;
 }
 
