@@ -19,6 +19,7 @@
 #include "exec/space.h"
 #include "gdr/refine2d.h"
 #include "gdr/validate.h"
+#include "predicates/predicates.h"
 #include "refine2d/engine_dispatch.h"
 #include "refine2d/input.h"
 #include "validate/conformity.h"
@@ -347,6 +348,36 @@ void note_removed_segments(const Pslg& input, const r2d::CleanPslg& pslg, TriMes
                    : "a hole seed on a segment or vertex, a hole ring inside a hole, or, with the exterior removed, a boundary chain that is not closed"));
 }
 
+// Hole seeds that cannot empty a region are said: outside the points' bounding box (outside
+// the domain), or exactly on an input point or segment (which side they empty is then
+// arbitrary). Exact tests; segments are scanned only while holes x segments stays small.
+void warn_misplaced_holes(const r2d::CleanPslg& g, const Callbacks& cb) {
+  if (!cb.warning || g.holes.empty() || g.points.empty()) return;
+  double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+  for (const Point2& p : g.points) {
+    x0 = std::min(x0, p.x), x1 = std::max(x1, p.x);
+    y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
+  }
+  const bool scan = static_cast<double>(g.holes.size()) * (g.segments.size() + g.points.size()) < 1e8;
+  for (std::size_t h = 0; h < g.holes.size(); ++h) {
+    const Point2& q = g.holes[h];
+    std::string where;
+    if (q.x < x0 || q.x > x1 || q.y < y0 || q.y > y1) where = "outside the domain";
+    for (std::size_t v = 0; scan && where.empty() && v < g.points.size(); ++v)
+      if (g.points[v].x == q.x && g.points[v].y == q.y) where = "on an input point";
+    for (std::size_t s = 0; scan && where.empty() && s < g.segments.size(); ++s) {
+      const Point2 &a = g.points[g.segments[s][0]], &b = g.points[g.segments[s][1]];
+      if (pred::orient2d(&a.x, &b.x, &q.x) == 0 && std::min(a.x, b.x) <= q.x &&
+          q.x <= std::max(a.x, b.x) && std::min(a.y, b.y) <= q.y && q.y <= std::max(a.y, b.y))
+        where = "on segment " + std::to_string(g.segment_origin[s] + g.first_index);
+    }
+    if (!where.empty())
+      cb.warning("hole " + std::to_string(h + g.first_index) + " lies " + where +
+                 (where[0] == 'o' && where[1] == 'u' ? ": it removes nothing"
+                                                     : ": which side it empties is arbitrary; move it inside the region to remove"));
+  }
+}
+
 }  // namespace
 
 Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_options,
@@ -367,6 +398,7 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
 
   progress(0.0, "checking input");
   r2d::CleanPslg pslg = r2d::clean_input(input, options, cb);
+  warn_misplaced_holes(pslg, cb);
   for (std::size_t v = 0; v < pslg.points.size(); ++v)  // intersection points onto the grid
     if (pslg.point_origin[v] < 0)
       for (double* c : {&pslg.points[v].x, &pslg.points[v].y}) *c = r2d::on_grid(*c, scale.grid_exp);

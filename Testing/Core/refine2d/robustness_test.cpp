@@ -276,3 +276,28 @@ TEST(Refine2dDeterministic, SameMeshOnEveryRun) {
 }
 
 }  // namespace
+
+namespace {
+
+// Hole seeds that cannot empty a region are said: outside the domain, on a point, on a segment.
+TEST(Refine2dHoles, MisplacedSeedsAreSaid) {
+  const std::vector<std::pair<Point2, std::string>> cases = {
+      {{10, 10}, "hole 0 lies outside the domain"},
+      {{1, 1}, "hole 0 lies on an input point"},
+      {{2, 1}, "hole 0 lies on segment 4"},
+      {{2, 2}, ""}};
+  for (const auto& [seed, expected] : cases) {
+    Pslg g;
+    add_loop(g, {{0, 0}, {4, 0}, {4, 4}, {0, 4}});
+    add_loop(g, {{1, 1}, {3, 1}, {3, 3}, {1, 3}});
+    g.holes = {seed};
+    std::string said;
+    gdr::Callbacks cb;
+    cb.warning = [&](const std::string& w) { said += w + "\n"; };
+    gdr::refine_2d(g, cpu(20), cb);
+    if (expected.empty()) EXPECT_EQ(said.find("hole"), std::string::npos) << said;
+    else EXPECT_NE(said.find(expected), std::string::npos) << said;
+  }
+}
+
+}  // namespace
