@@ -211,8 +211,8 @@ void check_closed(const EdgeTable& edges, const std::vector<int>& origin) {
     throw Error(Status::InvalidInput,
                 "the surface is open: edges with one triangle " + list_items(open, count) +
                     ". A tetrahedral mesh needs a closed surface: fill the holes first (ParaView's "
-                    "Fill Holes filter, vtkFillHolesFilter). Meshing open surfaces (restricted "
-                    "Delaunay refinement) is not available yet");
+                    "Fill Holes filter, vtkFillHolesFilter), or mesh the surface itself with "
+                    "'gdr rdt' (restricted Delaunay refinement)");
 }
 
 void check_self_intersections(const Plc& plc) {
