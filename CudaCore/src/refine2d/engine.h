@@ -26,7 +26,7 @@ struct Strategies {
   bool deferment = true;     // S5: defer cavities still growing after a few rounds
   bool touching = true;      // cavities that touch go in together when the mesh stays Delaunay
   bool block_rounds = true;  // small ExpandList windows run their rounds inside one GPU block
-  bool worst_first = true;   // triangles bad by shape alone worst first, not larger first
+  bool worst_first = true;   // triangles bad by shape alone smallest first, not larger first
 };
 
 struct EngineParams {
@@ -307,7 +307,7 @@ struct Engine {
     }
     lim.block_rounds = params.strategies.block_rounds;
     const exec::ExpandListResult er = exec::expand_list<Space, 3>(
-        tuples, n0, GrowCavity{dm.view(), cand.data(), failed.data(), params.criteria.chew}, lim);
+        tuples, n0, GrowCavity{dm.view(), cand.data(), failed.data(), params.criteria.lens_cos2}, lim);
     // Deferred cavities must finish next time, or big ones would block their neighbourhood
     // forever. Points whose cavity is still growing give up this iteration.
     allow_deferment = !er.deferred();

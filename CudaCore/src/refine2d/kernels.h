@@ -21,7 +21,9 @@ struct Criteria {
   double max_edge2 = 0;       // squared edge bound; 0 = off
   double max_area2 = 0;       // twice the area bound (compared with |cross|); 0 = off
   double offcenter_h = 0;     // off-centres: height over the shortest edge / its length; 0 = circumcentres
-  int chew = 0;               // 1: diametral lens encroachment, 0: diametral circle
+  // Encroachment: 0 = diametral circle (Ruppert); else the diametral lens of the points that
+  // see the subsegment at an angle whose cosine c has c^2 >= lens_cos2 (c < 0).
+  double lens_cos2 = 0;
   // Per region number r > 0 (mesh2d.h, kRegionShift): twice region r's area bound at
   // region_area2[r - 1], 0 = none; null without regional bounds. Device memory of the run.
   const double* region_area2 = nullptr;
@@ -62,13 +64,13 @@ GDR_HD_INLINE double dist2(const double* a, const double* b) {
 }
 
 // Does p encroach the subsegment ab? Ruppert: strictly inside the diametral circle (exact).
-// Chew: inside the diametral lens, i.e. the angle apb exceeds 120 degrees.
-GDR_HD_INLINE bool encroaches(const double* a, const double* b, const double* p, int chew) {
+// Lens: inside the diametral lens, i.e. the angle apb is at least arccos(-sqrt(lens_cos2)).
+GDR_HD_INLINE bool encroaches(const double* a, const double* b, const double* p, double lens_cos2) {
   if (pred::in_diametral_circle(a, b, p) <= 0) return false;
-  if (!chew) return true;
+  if (!(lens_cos2 > 0)) return true;
   const double ax = a[0] - p[0], ay = a[1] - p[1], bx = b[0] - p[0], by = b[1] - p[1];
   const double dot = ax * bx + ay * by;  // negative here
-  return 4.0 * dot * dot > (ax * ax + ay * ay) * (bx * bx + by * by);
+  return dot * dot >= lens_cos2 * (ax * ax + ay * ay) * (bx * bx + by * by);
 }
 
 // Classification of a triangle against the criteria.
@@ -184,16 +186,27 @@ GDR_HD_INLINE void splitting_point(const MeshView& m, int t, const Criteria& c, 
   out[1] = on_grid(out[1], c.grid_exp);
 }
 
-// Splitting point of subsegment ab. Concentric shells (Ruppert, Shewchuk): when exactly one
-// endpoint is an input vertex, split at a power-of-two distance from it, so that segments
-// meeting at a small angle are cut at matching radii and do not encroach each other forever.
-GDR_HD_INLINE void segment_split_point(const MeshView& m, int va, int vb, int grid_exp,
+// Splitting point of edge k of triangle t, a subsegment ab. Concentric shells (Ruppert,
+// Shewchuk): where another subsegment meets ab at an endpoint in a triangle on either side
+// (the segments meet at an angle below 180 degrees), split at a power-of-two distance from
+// that endpoint, so that segments meeting at a small angle are cut at matching radii and do
+// not encroach each other forever; elsewhere at the midpoint, as Triangle does. (Shells at
+// every input vertex cut all segments unevenly: 7-10% more points on segments.)
+GDR_HD_INLINE void segment_split_point(const MeshView& m, int t, int k, int grid_exp,
                                        double* out) {
+  const int va = m.tv[3 * t + next3(k)], vb = m.tv[3 * t + prev3(k)];
   const double* a = pt(m, va);
   const double* b = pt(m, vb);
-  const bool ia = m.ptype[va] == kInputPoint, ib = m.ptype[vb] == kInputPoint;
+  bool ia = is_subseg(m, t, prev3(k)), ib = is_subseg(m, t, next3(k));
+  const int nb = m.tn[3 * t + k];
+  if (nb >= 0) {  // in the triangle across ab, edge next3(ku) ends at a, prev3(ku) at b
+    const int u = nb / 3, ku = nb % 3;
+    ia = ia || is_subseg(m, u, next3(ku));
+    ib = ib || is_subseg(m, u, prev3(ku));
+  }
+  if (ia && ib) ia = false;  // both: from b, as Triangle (either would do)
   double f = 0.5;
-  if (ia != ib) {
+  if (ia || ib) {
     const double len = sqrt(dist2(a, b));
     const double d = exp2(floor(log2(0.5 * len) + 0.5));  // nearest power of two to len/2
     f = d / len;
@@ -221,7 +234,7 @@ GDR_HD_INLINE int static_collect_mask(const MeshView& m, const Criteria& c, int 
   for (int k = 0; k < 3; ++k) {
     if (!is_subseg(m, t, k)) continue;
     const int a = m.tv[3 * t + next3(k)], b = m.tv[3 * t + prev3(k)], apex = m.tv[3 * t + k];
-    if (encroaches(pt(m, a), pt(m, b), pt(m, apex), c.chew)) mask |= 1 << k;
+    if (encroaches(pt(m, a), pt(m, b), pt(m, apex), c.lens_cos2)) mask |= 1 << k;
   }
   return mask;
 }
@@ -290,18 +303,20 @@ GDR_HD_INLINE float size_class(double size) {
 }
 
 // Triangles: those too big for the size bounds first, larger first by size classes (the
-// paper's order); then those bad by their shape alone, worst first by radius-edge ratio
-// (squared here), as Triangle and CGAL Mesh_2 order them. For shape, larger-first needs
-// more points and cascades sooner above 30 degrees: the world map at 33.5 degrees took 1.3M
-// Steiner points larger-first against 345k (CGAL Mesh_2 did not finish in 60 s), and the
-// contour map at 30 degrees 376k against 337k. For size, worst-first takes more iterations
-// (counties at 1M points: 89 against 68 on the H100, 29% slower).
-GDR_HD_INLINE float radius_edge_ratio2(const MeshView& m, int t, double r2) {
+// paper's order); then those bad by their shape alone, smallest first: by the length of their
+// shortest edge, in classes of a factor sqrt(2) of its square, as Triangle's queue orders them
+// (smallest features first, so that the points around them are placed before the coarser ones
+// that they would otherwise crowd). For shape, larger-first needs more points and cascades
+// sooner above 30 degrees (the world map at 33.5 degrees took 1.3M Steiner points larger-first
+// against 345k worst-first by radius-edge ratio); smallest-first needs 3-10% fewer points than
+// worst-first at 20-30 degrees (Benchmarks/RESULTS.md, issue 13). For size, a finer order takes
+// more iterations (counties at 1M points: 89 against 68 on the H100, 29% slower).
+GDR_HD_INLINE float shortest_edge_class(const MeshView& m, int t) {
   const double* a = pt(m, m.tv[3 * t]);
   const double* b = pt(m, m.tv[3 * t + 1]);
   const double* d = pt(m, m.tv[3 * t + 2]);
-  const double q = r2 / fmin(dist2(a, b), fmin(dist2(b, d), dist2(d, a)));
-  return q < 1e38 ? static_cast<float>(q) : 1e38f;
+  const double l2 = fmin(dist2(a, b), fmin(dist2(b, d), dist2(d, a)));
+  return static_cast<float>(2200.0 - floor(2.0 * log2(l2)));  // positive for any double l2 > 0
 }
 GDR_HD_INLINE unsigned shuffle_id(unsigned x, unsigned salt) {  // a bijection of 32 bits
   x ^= salt;
@@ -317,7 +332,7 @@ GDR_HD_INLINE void make_segment_candidate(const MeshView& m, int t, int k, unsig
                                           unsigned id, int grid_exp, Candidate& out) {
   const int a = m.tv[3 * t + next3(k)], b = m.tv[3 * t + prev3(k)];
   double p[2];
-  segment_split_point(m, a, b, grid_exp, p);
+  segment_split_point(m, t, k, grid_exp, p);
   const int nb = m.tn[3 * t + k];
   // The canonical side: both triangles may report the same subsegment.
   if (nb >= 0 && nb / 3 < t) {
@@ -348,7 +363,7 @@ struct ComputeSplittingPoints {
   const int* list;
   Candidate* out;
   unsigned salt;  // changes every iteration
-  bool worst_first;  // triangles bad by shape by radius-edge ratio; false: all larger first
+  bool worst_first;  // triangles bad by shape smallest first (shortest edge); false: all larger first
   u64 compete_below;  // only elements whose random id is below this (of 2^32) compete
   int max_steps;
   bool far_only;
@@ -396,7 +411,7 @@ struct ComputeSplittingPoints {
         cand.start = u;
         cand.ek = -1;
         if (worst_first && !too_big(m, t, c))
-          cand.prio = exec::make_priority(kClassShape, radius_edge_ratio2(m, t, r2), id);
+          cand.prio = exec::make_priority(kClassShape, shortest_edge_class(m, t), id);
         else
           cand.prio = exec::make_priority(kClassTriangle, size_class(r2), id);
         return;
@@ -455,7 +470,7 @@ struct GrowCavity {
   MeshView m;
   const Candidate* cand;
   int* failed;
-  int chew;
+  double lens_cos2;
   GDR_HD int operator()(long long, CavityTuple& h, CavityTuple* out) const {
     const Candidate& c = cand[h.pt];
     if (exec::volatile_load(&failed[h.pt])) {
@@ -497,7 +512,7 @@ struct GrowCavity {
         // Ruppert: a free point that would encroach a subsegment is not inserted; the
         // subsegment is split first (flagged for the next iteration).
         if (c.kind == 1 && encroaches(pt(m, m.tv[3 * t + next3(e)]), pt(m, m.tv[3 * t + prev3(e)]),
-                                      p, chew)) {
+                                      p, lens_cos2)) {
           exec::atomic_or(&m.tflag[t], kSplitEdge0 << e);
           failed[h.pt] = 1;
           return n;

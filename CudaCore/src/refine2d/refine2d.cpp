@@ -44,7 +44,12 @@ r2d::Criteria make_criteria(const Refine2dOptions& o) {
   // height cot(theta/2)/2 over it (kernels.h); 5% lower, so that rounding cannot leave that
   // triangle just below theta, bad again.
   if (o.off_centers && o.min_angle > 0) c.offcenter_h = 0.95 * 0.5 / std::tan(o.min_angle * kPi / 360.0);
-  c.chew = o.mode == EncroachMode::Chew ? 1 : 0;
+  // Chew: the lens of angle 180 - 2 theta, as Triangle's (120 degrees at 30; without an angle
+  // bound, 120): a vertex there is seen from the subsegment at an angle above theta.
+  if (o.mode == EncroachMode::Chew) {
+    const double lens = o.min_angle > 0 ? std::cos(2.0 * o.min_angle * kPi / 180.0) : 0.5;
+    c.lens_cos2 = lens * lens;
+  }
   return c;
 }
 
