@@ -114,13 +114,15 @@ Result run_triangle(const Case& c, Inputs& inputs, const Settings& s, double max
   const std::string exe = anchor(s, "triangle");
   if (!fs::exists(exe)) return skipped(exe + " not found (copy ../shared/anchors/bin into --bin-dir)");
   if (max_edge > 0) return skipped("Triangle has no edge-length bound (compare at max_area instead)");
-  if (c.text("mode", "ruppert") != "ruppert") return skipped("Triangle has no Chew mode");
   const double theta = c.number("min_angle", 20.0);
   const double max_area = c.number("max_area", 0.0);
   // -c: the convex hull with its edges as segments, as our default domain; without it
   // Triangle removes what closed segment loops do not enclose (exterior=remove).
   std::string base = "-p";
   if (c.text("exterior", "keep") != "remove") base += "c";
+  // Triangle's own encroachment is our chew mode (the lens of angle 180 - 2 theta); -D gives
+  // diametral circles (and a conforming Delaunay mesh), our ruppert mode.
+  if (c.text("mode", "ruppert") == "ruppert") base += "D";
   std::string quality;
   if (theta > 0) quality += "q" + number_arg(theta);
   if (max_area > 0) quality += "a" + plain_decimal(max_area);
