@@ -311,6 +311,15 @@ GDR_HD_INLINE float size_class(double size) {
 // against 345k worst-first by radius-edge ratio); smallest-first needs 3-10% fewer points than
 // worst-first at 20-30 degrees (Benchmarks/RESULTS.md, issue 13). For size, a finer order takes
 // more iterations (counties at 1M points: 89 against 68 on the H100, 29% slower).
+// Above 30 degrees, where refinement may cascade, worst first by radius-edge ratio (squared)
+// instead: smallest-first cascaded on the world map at 33.5 degrees (400k points and on).
+GDR_HD_INLINE float radius_edge_ratio2(const MeshView& m, int t, double r2) {
+  const double* a = pt(m, m.tv[3 * t]);
+  const double* b = pt(m, m.tv[3 * t + 1]);
+  const double* d = pt(m, m.tv[3 * t + 2]);
+  const double q = r2 / fmin(dist2(a, b), fmin(dist2(b, d), dist2(d, a)));
+  return q < 1e38 ? static_cast<float>(q) : 1e38f;
+}
 GDR_HD_INLINE float shortest_edge_class(const MeshView& m, int t) {
   const double* a = pt(m, m.tv[3 * t]);
   const double* b = pt(m, m.tv[3 * t + 1]);
@@ -411,7 +420,10 @@ struct ComputeSplittingPoints {
         cand.start = u;
         cand.ek = -1;
         if (worst_first && !too_big(m, t, c))
-          cand.prio = exec::make_priority(kClassShape, shortest_edge_class(m, t), id);
+          cand.prio = exec::make_priority(kClassShape,
+                                          c.sin2_min_angle <= 0.25 ? shortest_edge_class(m, t)
+                                                                   : radius_edge_ratio2(m, t, r2),
+                                          id);
         else
           cand.prio = exec::make_priority(kClassTriangle, size_class(r2), id);
         return;
