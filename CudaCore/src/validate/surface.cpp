@@ -94,12 +94,29 @@ ValidationReport validate_surface(const std::vector<Point3>& points,
     for (const auto& p : pairs)
       problems.add("triangles " + text(good[p[0]]) + " and " + text(good[p[1]]) + " intersect");
   }
-  r.quality.elements = triangles.size();
+  // Quality as the summary prints it: plane angles and radius-edge ratios of the triangles.
+  QualityStats& q = r.quality;
+  q.elements = triangles.size();
+  q.min_angle_deg = good.empty() ? 0 : 180;
   for (const auto& t : good) {
-    const Point3 &a = points[t[0]], &b = points[t[1]], &c = points[t[2]];
-    const double u[3] = {b.x - a.x, b.y - a.y, b.z - a.z}, v[3] = {c.x - a.x, c.y - a.y, c.z - a.z};
-    const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-    r.quality.total_measure += 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    const Point3 p[3] = {points[t[0]], points[t[1]], points[t[2]]};
+    double edge[3], area2 = 0;
+    for (int k = 0; k < 3; ++k) {  // the angle at corner k, between the edges to the others
+      const Point3 &o = p[k], &x = p[(k + 1) % 3], &y = p[(k + 2) % 3];
+      const double u[3] = {x.x - o.x, x.y - o.y, x.z - o.z}, v[3] = {y.x - o.x, y.y - o.y, y.z - o.z};
+      const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+      const double cross = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      const double angle = std::atan2(cross, u[0] * v[0] + u[1] * v[1] + u[2] * v[2]) * 180 / 3.14159265358979323846;
+      q.min_angle_deg = std::min(q.min_angle_deg, angle);
+      q.max_angle_deg = std::max(q.max_angle_deg, angle);
+      edge[k] = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+      if (k == 0) area2 = cross;
+    }
+    q.total_measure += 0.5 * area2;
+    const double shortest = std::min({edge[0], edge[1], edge[2]});
+    const double ratio = area2 > 0 && shortest > 0 ? edge[0] * edge[1] * edge[2] / (2 * area2) / shortest : 1e300;
+    q.max_radius_edge = std::max(q.max_radius_edge, ratio);
+    q.mean_radius_edge += ratio / static_cast<double>(good.size());
   }
   r.valid = r.invalid_indices == 0 && r.inverted_elements == 0 && r.nonmanifold == 0 && r.boundary_errors == 0;
   return r;
