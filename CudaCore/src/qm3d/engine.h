@@ -15,6 +15,7 @@
 #include "mesh3d/cavity.h"
 #include "mesh3d/compact.h"
 #include "mesh3d/mesh3d.h"
+#include "mesh3d/stall.h"
 #include "qm3d/kernels.h"
 
 namespace gdr::qm3d {
@@ -127,9 +128,7 @@ struct Engine {
   // counters: [0] broken link found while remeshing, [1] tetrahedra killed, [2] subfaces killed
   enum { kError = 0, kKilledTets = 1, kKilledSubs = 2, kCounters = 3 };
   static constexpr int kClaimRounds = 8;  // claim rounds per iteration (grow_cavities)
-  static constexpr std::size_t kStallWindow = 40, kSameBacklog = 6;
-  std::vector<std::size_t> backlog;       // elements to split, per iteration
-  std::vector<int> points;                // points in the mesh, per iteration
+  m3d::StallDetector stall;
   u64 keep_below = 0;                     // priority ids below this compete this iteration
 
   Engine(const EngineParams& p, const Callbacks& c) : params(p), cb(c) {}
@@ -160,19 +159,7 @@ struct Engine {
         res.stalled = true;
         break;
       }
-      // Stall detection: every kStallWindow iterations the elements left to split must shrink
-      // by a fiftieth, or the mesh must grow by a quarter (refinement to a size bound first
-      // multiplies the elements to split); otherwise what is left cannot be split by this
-      // method (the points it needs keep failing) and the run ends, reporting them.
-      // The same backlog for a few iterations in a row are the same elements failing again.
-      backlog.push_back(nl);
-      points.push_back(dm.npts);
-      const std::size_t n = backlog.size();
-      const bool shrinking = n <= kStallWindow || 50 * nl <= 49 * backlog[n - 1 - kStallWindow] ||
-                             4LL * dm.npts >= 5LL * points[n - 1 - kStallWindow];
-      bool unchanged = n > kSameBacklog;
-      for (std::size_t k = 1; unchanged && k <= kSameBacklog; ++k) unchanged = backlog[n - 1 - k] == nl;
-      if (!shrinking || unchanged) {
+      if (stall.stalled(nl, dm.npts)) {  // mesh3d/stall.h
         res.stalled = true;
         break;
       }

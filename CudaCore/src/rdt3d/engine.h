@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "mesh3d/stall.h"
 #include "qm3d/engine.h"
 #include "rdt3d/kernels.h"
 
@@ -70,9 +71,7 @@ struct Engine {
   AabbView tree{};
   bool stagnant = false;
   const bool trace = std::getenv("GDR_TRACE") != nullptr;
-  static constexpr std::size_t kStallWindow = 40, kSameBacklog = 6;
-  std::vector<std::size_t> backlog;
-  std::vector<int> points;
+  m3d::StallDetector stall;
 
   Engine(const EngineParams& p, const Callbacks& c) : params(p), cb(c), core(p.insertion, c) {}
 
@@ -115,17 +114,7 @@ struct Engine {
         res.stalled = true;
         break;
       }
-      // Stall detection as gQM3d's: every kStallWindow iterations the backlog must shrink by
-      // a fiftieth or the mesh grow by a quarter; the same backlog several times in a row is
-      // the same elements failing again.
-      backlog.push_back(nl);
-      points.push_back(dm.npts);
-      const std::size_t n = backlog.size();
-      const bool shrinking = n <= kStallWindow || 50 * nl <= 49 * backlog[n - 1 - kStallWindow] ||
-                             4LL * dm.npts >= 5LL * points[n - 1 - kStallWindow];
-      bool unchanged = n > kSameBacklog;
-      for (std::size_t k = 1; unchanged && k <= kSameBacklog; ++k) unchanged = backlog[n - 1 - k] == nl;
-      if (!shrinking || unchanged) {
+      if (stall.stalled(nl, dm.npts)) {  // mesh3d/stall.h, as gQM3d
         res.stalled = true;
         break;
       }
