@@ -149,36 +149,28 @@ std::vector<OutputFile> outputs_of(const ArgsRdt& a) {
   return out;
 }
 
+// One cell array, in single precision where the mesher measured it so.
+template <class Values>
+void add_cell_array(io::Attributes& at, const char* name, const Values& values, bool float32) {
+  at.cell_data.push_back({name, 1, std::vector<double>(values.begin(), values.end()), float32});
+}
+
 io::Attributes tet_arrays(const RestrictedDelaunayResult& r) {
   io::Attributes at;
-  auto add = [&](const char* name, const auto& values, bool f32) {
-    io::DataArray d;
-    d.name = name;
-    d.values.assign(values.begin(), values.end());
-    d.float32 = f32;
-    at.cell_data.push_back(std::move(d));
-  };
-  add("RadiusEdgeRatio", r.radius_edge, true);
-  add("MinDihedralAngle", r.min_dihedral, true);
-  add("MaxDihedralAngle", r.max_dihedral, true);
-  add("Volume", r.volume, false);
-  add("IsBad", r.is_bad, true);
+  add_cell_array(at, "RadiusEdgeRatio", r.radius_edge, true);
+  add_cell_array(at, "MinDihedralAngle", r.min_dihedral, true);
+  add_cell_array(at, "MaxDihedralAngle", r.max_dihedral, true);
+  add_cell_array(at, "Volume", r.volume, false);
+  add_cell_array(at, "IsBad", r.is_bad, true);
   return at;
 }
 
 io::Attributes surface_arrays(const RestrictedDelaunayResult& r) {
   io::Attributes at;
-  auto add = [&](const char* name, const auto& values, bool f32) {
-    io::DataArray d;
-    d.name = name;
-    d.values.assign(values.begin(), values.end());
-    d.float32 = f32;
-    at.cell_data.push_back(std::move(d));
-  };
-  add("MinAngle", r.facet_min_angle, true);
-  add("Size", r.facet_size, false);
-  add("Distance", r.facet_distance, false);
-  add("IsBad", r.facet_is_bad, true);
+  add_cell_array(at, "MinAngle", r.facet_min_angle, true);
+  add_cell_array(at, "Size", r.facet_size, false);
+  add_cell_array(at, "Distance", r.facet_distance, false);
+  add_cell_array(at, "IsBad", r.facet_is_bad, true);
   return at;
 }
 
