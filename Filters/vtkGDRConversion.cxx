@@ -319,17 +319,34 @@ void vtkGDRConversion::HistogramTable(
   table->Initialize();
   const vtkIdType nbins = static_cast<vtkIdType>(counts.size());
   vtkNew<vtkDoubleArray> centers;
-  vtkNew<vtkIdTypeArray> values;
   centers->SetName("bin_extents");
-  values->SetName(countName);
   centers->SetNumberOfValues(nbins);
-  values->SetNumberOfValues(nbins);
   for (vtkIdType i = 0; i < nbins; ++i)
   {
     centers->SetValue(i, i + 0.5);
-    values->SetValue(i, static_cast<vtkIdType>(counts[i]));
   }
   table->AddColumn(centers);
+  vtkGDRConversion::AddHistogramColumn(counts, countName, table);
+}
+
+//------------------------------------------------------------------------------
+void vtkGDRConversion::AddHistogramColumn(
+  const std::vector<long long>& counts, const char* countName, vtkTable* table)
+{
+  const vtkIdType nbins = table->GetNumberOfRows();
+  if (static_cast<vtkIdType>(counts.size()) > nbins)
+  {
+    throw gdr::Error(gdr::Status::InternalError,
+      std::string("histogram ") + countName + " has more bins than its table");
+  }
+  vtkNew<vtkIdTypeArray> values;
+  values->SetName(countName);
+  values->SetNumberOfValues(nbins);
+  values->Fill(0);
+  for (std::size_t i = 0; i < counts.size(); ++i)
+  {
+    values->SetValue(static_cast<vtkIdType>(i), static_cast<vtkIdType>(counts[i]));
+  }
   table->AddColumn(values);
 }
 
@@ -346,7 +363,7 @@ void AddValue(vtkFieldData* fd, const char* name, ValueT value)
   fd->AddArray(array);
 }
 
-// The statistics both meshers report, under the same names.
+// The statistics every mesher reports, under the same names.
 template <typename Stats>
 void AddRunStats(const Stats& stats, vtkFieldData* fd)
 {
@@ -354,15 +371,11 @@ void AddRunStats(const Stats& stats, vtkFieldData* fd)
   AddValue<vtkStringArray>(fd, "DeviceName", stats.device_name);
   AddValue<vtkIntArray>(fd, "Iterations", stats.iterations);
   AddValue<vtkIdTypeArray>(fd, "InputPoints", static_cast<vtkIdType>(stats.input_points));
-  AddValue<vtkIdTypeArray>(fd, "InputSegments", static_cast<vtkIdType>(stats.input_segments));
-  AddValue<vtkIdTypeArray>(
-    fd, "DuplicatePointsMerged", static_cast<vtkIdType>(stats.duplicate_points_merged));
   AddValue<vtkIdTypeArray>(fd, "SteinerPoints", static_cast<vtkIdType>(stats.steiner_points));
   AddValue<vtkIdTypeArray>(fd, "SteinerCap", static_cast<vtkIdType>(stats.steiner_cap));
   AddValue<vtkIntArray>(fd, "SteinerCapReached", stats.steiner_cap_reached ? 1 : 0);
   AddValue<vtkIntArray>(fd, "Stalled", stats.stalled ? 1 : 0);
   AddValue<vtkDoubleArray>(fd, "InputSeconds", stats.input_seconds);
-  AddValue<vtkDoubleArray>(fd, "CDTSeconds", stats.cdt_seconds);
   AddValue<vtkDoubleArray>(fd, "RefineSeconds", stats.refine_seconds);
   AddValue<vtkDoubleArray>(fd, "OutputSeconds", stats.output_seconds);
   AddValue<vtkDoubleArray>(fd, "TotalSeconds", stats.total_seconds);
@@ -381,11 +394,23 @@ void AddRunStats(const Stats& stats, vtkFieldData* fd)
   fd->AddArray(names);
   fd->AddArray(seconds);
 }
+
+// And those of the two constrained meshers, which keep their input segments and start from
+// a constrained Delaunay triangulation.
+template <typename Stats>
+void AddConstrainedRunStats(const Stats& stats, vtkFieldData* fd)
+{
+  AddRunStats(stats, fd);
+  AddValue<vtkIdTypeArray>(fd, "InputSegments", static_cast<vtkIdType>(stats.input_segments));
+  AddValue<vtkIdTypeArray>(
+    fd, "DuplicatePointsMerged", static_cast<vtkIdType>(stats.duplicate_points_merged));
+  AddValue<vtkDoubleArray>(fd, "CDTSeconds", stats.cdt_seconds);
+}
 }
 
 void vtkGDRConversion::AddStats(const gdr::Refine2dStats& stats, vtkFieldData* fd)
 {
-  AddRunStats(stats, fd);
+  AddConstrainedRunStats(stats, fd);
   AddValue<vtkIdTypeArray>(fd, "BadTriangles", static_cast<vtkIdType>(stats.bad_triangles));
   AddValue<vtkDoubleArray>(fd, "BadAreaPercent", stats.bad_area_percent);
   AddValue<vtkDoubleArray>(fd, "MinimumAngleReached", stats.min_angle_deg);
@@ -394,7 +419,7 @@ void vtkGDRConversion::AddStats(const gdr::Refine2dStats& stats, vtkFieldData* f
 //------------------------------------------------------------------------------
 void vtkGDRConversion::AddStats(const gdr::QualityTetStats& stats, vtkFieldData* fd)
 {
-  AddRunStats(stats, fd);
+  AddConstrainedRunStats(stats, fd);
   AddValue<vtkIdTypeArray>(fd, "InputTriangles", static_cast<vtkIdType>(stats.input_triangles));
   AddValue<vtkIdTypeArray>(fd, "InputFacets", static_cast<vtkIdType>(stats.input_facets));
   AddValue<vtkIdTypeArray>(
@@ -410,6 +435,32 @@ void vtkGDRConversion::AddStats(const gdr::QualityTetStats& stats, vtkFieldData*
   AddValue<vtkDoubleArray>(fd, "MaximumRadiusEdgeRatioReached", stats.max_radius_edge);
   AddValue<vtkDoubleArray>(fd, "Volume", stats.volume);
   AddValue<vtkDoubleArray>(fd, "InputVolume", stats.input_volume);
+}
+
+//------------------------------------------------------------------------------
+void vtkGDRConversion::AddStats(const gdr::RestrictedDelaunayStats& stats, vtkFieldData* fd)
+{
+  AddRunStats(stats, fd);
+  AddValue<vtkIdTypeArray>(fd, "InputTriangles", static_cast<vtkIdType>(stats.input_triangles));
+  AddValue<vtkIntArray>(fd, "ClosedInput", stats.closed_input ? 1 : 0);
+  AddValue<vtkIntArray>(fd, "VolumeMeshed", stats.volume_meshed ? 1 : 0);
+  AddValue<vtkIdTypeArray>(fd, "InitialPoints", static_cast<vtkIdType>(stats.initial_points));
+  AddValue<vtkIdTypeArray>(fd, "BadFacets", static_cast<vtkIdType>(stats.bad_facets));
+  AddValue<vtkIdTypeArray>(fd, "BadTetrahedra", static_cast<vtkIdType>(stats.bad_tets));
+  AddValue<vtkDoubleArray>(fd, "FacetAngle", stats.facet_angle);
+  AddValue<vtkDoubleArray>(fd, "FacetSize", stats.facet_size);
+  AddValue<vtkDoubleArray>(fd, "FacetDistance", stats.facet_distance);
+  AddValue<vtkDoubleArray>(fd, "CellRadiusEdgeRatio", stats.cell_radius_edge_ratio);
+  AddValue<vtkDoubleArray>(fd, "CellSize", stats.cell_size);
+  AddValue<vtkDoubleArray>(fd, "MinimumFacetAngleReached", stats.min_facet_angle_deg);
+  AddValue<vtkDoubleArray>(fd, "MaximumFacetSizeReached", stats.max_facet_size);
+  AddValue<vtkDoubleArray>(fd, "MaximumFacetDistanceReached", stats.max_facet_distance);
+  AddValue<vtkDoubleArray>(fd, "MinimumDihedralAngleReached", stats.min_dihedral_deg);
+  AddValue<vtkDoubleArray>(fd, "MaximumDihedralAngleReached", stats.max_dihedral_deg);
+  AddValue<vtkDoubleArray>(fd, "MaximumRadiusEdgeRatioReached", stats.max_radius_edge);
+  AddValue<vtkDoubleArray>(fd, "Area", stats.area);
+  AddValue<vtkDoubleArray>(fd, "Volume", stats.volume);
+  AddValue<vtkDoubleArray>(fd, "InitialSeconds", stats.initial_seconds);
 }
 
 //------------------------------------------------------------------------------
@@ -671,10 +722,11 @@ void AddCellArray(vtkCellData* cd, const char* name, const std::vector<ValueT>& 
   std::copy(values.begin(), values.end(), array->GetPointer(0));
   cd->AddArray(array);
 }
-}
 
-void vtkGDRConversion::ToUnstructuredGrid(
-  const gdr::QualityTetResult& result, vtkUnstructuredGrid* output)
+// The points, tetrahedra, PointType and quality arrays of a 3D mesher's result (the
+// constrained and the restricted mesher measure their tetrahedra alike).
+template <typename Result>
+void TetQualityGrid(const Result& result, vtkUnstructuredGrid* output)
 {
   output->Initialize();
   const gdr::TetMesh& mesh = result.mesh;
@@ -712,9 +764,34 @@ void vtkGDRConversion::ToUnstructuredGrid(
   AddCellArray<vtkFloatArray>(cd, "MaxDihedralAngle", result.max_dihedral);
   AddCellArray<vtkDoubleArray>(cd, "Volume", result.volume);
   AddCellArray<vtkUnsignedCharArray>(cd, "IsBad", result.is_bad);
-  AddCellArray<vtkIntArray>(cd, "Region",
-    mesh.tet_region.empty() ? std::vector<int>(mesh.tets.size(), 0) : mesh.tet_region);
   cd->SetActiveScalars("MinDihedralAngle");
+}
+}
+
+void vtkGDRConversion::ToUnstructuredGrid(
+  const gdr::QualityTetResult& result, vtkUnstructuredGrid* output)
+{
+  TetQualityGrid(result, output);
+  const gdr::TetMesh& mesh = result.mesh;
+  AddCellArray<vtkIntArray>(output->GetCellData(), "Region",
+    mesh.tet_region.empty() ? std::vector<int>(mesh.tets.size(), 0) : mesh.tet_region);
+}
+
+//------------------------------------------------------------------------------
+void vtkGDRConversion::ToRestrictedMesh(
+  const gdr::RestrictedDelaunayResult& result, vtkUnstructuredGrid* tets, vtkPolyData* surface)
+{
+  TetQualityGrid(result, tets);
+  surface->Initialize();
+  surface->SetPoints(tets->GetPoints());
+  surface->SetPolys(FixedSizeCells(result.mesh.subfaces, { 0, 1, 2 }));
+  surface->GetPointData()->PassData(tets->GetPointData());
+  vtkCellData* cd = surface->GetCellData();
+  AddCellArray<vtkFloatArray>(cd, "MinAngle", result.facet_min_angle);
+  AddCellArray<vtkDoubleArray>(cd, "Size", result.facet_size);
+  AddCellArray<vtkDoubleArray>(cd, "Distance", result.facet_distance);
+  AddCellArray<vtkUnsignedCharArray>(cd, "IsBad", result.facet_is_bad);
+  cd->SetActiveScalars("MinAngle");
 }
 
 //------------------------------------------------------------------------------

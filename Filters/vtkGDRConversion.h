@@ -12,6 +12,7 @@
 
 #include "gdr/pslg.h"
 #include "gdr/qm3d.h"
+#include "gdr/rdt3d.h"
 #include "gdr/refine2d.h"
 
 #include <string>
@@ -116,9 +117,30 @@ public:
     const std::vector<long long>& counts, const char* countName, vtkTable* table);
 
   /**
+   * One more series of 1-unit bins for a HistogramTable: the column `countName`, with 0
+   * for the bins beyond `counts` (the table keeps its rows; extra counts are an error).
+   */
+  static void AddHistogramColumn(
+    const std::vector<long long>& counts, const char* countName, vtkTable* table);
+
+  /**
    * The statistics of a 3D run as field data arrays.
    */
   static void AddStats(const gdr::QualityTetStats& stats, vtkFieldData* fieldData);
+
+  /**
+   * The mesh of a restricted Delaunay run: `tets` as ToUnstructuredGrid makes it (without
+   * Region), and `surface`, the restricted surface triangles over the same points and point
+   * data, with the cell arrays MinAngle (the active scalars), Size, Distance and IsBad.
+   */
+  static void ToRestrictedMesh(
+    const gdr::RestrictedDelaunayResult& result, vtkUnstructuredGrid* tets, vtkPolyData* surface);
+
+  /**
+   * The statistics of a restricted Delaunay run, with the criteria in effect (automatic
+   * sizes resolved), as field data arrays.
+   */
+  static void AddStats(const gdr::RestrictedDelaunayStats& stats, vtkFieldData* fieldData);
 
   ///@{
   /**
