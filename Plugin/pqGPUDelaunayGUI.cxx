@@ -13,9 +13,14 @@
 #include "vtkInformation.h"
 #include "vtkWeakPointer.h"
 #include "vtkCommand.h"
+#include "vtkNew.h"
+#include "vtkPVDataInformation.h"
+#include "vtkSMParaViewPipelineControllerWithRendering.h"
 #include "vtkSMPropertyHelper.h"
 #include "vtkSMProxy.h"
 #include "vtkSMSettings.h"
+#include "vtkSMSourceProxy.h"
+#include "vtkSMViewProxy.h"
 
 #include <QApplication>
 #include <QEvent>
@@ -25,13 +30,70 @@
 
 #include <cstring>
 #include <memory>
+#include <utility>
+#include <vector>
 
 namespace
 {
 bool IsMeshingFilter(vtkObject* object)
 {
   return object &&
-    (object->IsA("vtkGPUConstrainedDelaunay2D") || object->IsA("vtkGPUQualityTetMesh"));
+    (object->IsA("vtkGPUConstrainedDelaunay2D") || object->IsA("vtkGPUQualityTetMesh") ||
+      object->IsA("vtkGPURestrictedDelaunay3D"));
+}
+
+// How a filter's histogram chart is titled: its port, the chart and axis titles, and the
+// legend label of each count column.
+struct HistogramChart
+{
+  const char* Proxy;
+  int Port;
+  const char* Title;
+  const char* LeftAxis;
+  std::vector<std::pair<const char*, const char*>> Series;
+};
+
+const HistogramChart* FindHistogramChart(const char* proxy, int port)
+{
+  static const HistogramChart charts[] = {
+    { "GPUConstrainedDelaunay2D", 1, "Minimum angle per triangle", "triangles",
+      { { "bin_values", "triangles" } } },
+    { "GPUQualityTetMesh", 1, "Dihedral angles", "dihedral angles",
+      { { "DihedralAngleCount", "dihedral angles" } } },
+    { "GPURestrictedDelaunay3D", 2, "Angle histograms", "count",
+      { { "DihedralAngleCount", "dihedral angles" },
+        { "FacetAngleCount", "smallest angle per surface triangle" } } },
+  };
+  for (const HistogramChart& chart : charts)
+  {
+    if (strcmp(chart.Proxy, proxy) == 0 && chart.Port == port)
+    {
+      return &chart;
+    }
+  }
+  return nullptr;
+}
+
+// A restricted Delaunay run without tetrahedra (an open surface, or Mesh Volume off) has its
+// mesh in the surface port, which the proxy does not show by default (with tetrahedra it
+// would flicker through their boundary faces): show it there, with its edges, instead.
+void ShowSurfaceWithoutTetrahedra(pqDataRepresentation* tets, pqOutputPort* port, pqView* view)
+{
+  pqPipelineSource* source = port->getSource();
+  if (port->getDataInformation()->GetNumberOfCells() > 0 || source->getNumberOfOutputPorts() < 2 ||
+    source->getOutputPort(1)->getDataInformation()->GetNumberOfCells() == 0)
+  {
+    return;
+  }
+  vtkNew<vtkSMParaViewPipelineControllerWithRendering> controller;
+  vtkSMProxy* surface = controller->Show(source->getSourceProxy(), 1, view->getViewProxy());
+  if (surface)
+  {
+    vtkSMPropertyHelper(surface, "Representation").Set("Surface With Edges");
+    surface->UpdateVTKObjects();
+  }
+  tets->setVisible(false);
+  view->render();
 }
 
 // Viridis over [0, top] as a ParaView RGBPoints list (x r g b ...).
@@ -77,8 +139,10 @@ void pqGPUDelaunayGUI::startup()
 
   // Fixed colour ranges for the quality arrays, at a priority below the user's settings
   // (and not written to the user's settings file).
+  // RGB interpolation between the five points: in ParaView's default (diverging) colour
+  // space the colours between them pass through white and pink.
   const QString lut = "\"%1\": { \"PVLookupTable\": { \"RGBPoints\": [%2], "
-                      "\"AutomaticRescaleRangeMode\": -1 } }";
+                      "\"ColorSpace\": \"RGB\", \"AutomaticRescaleRangeMode\": -1 } }";
   const QString json = "{ \"array_lookup_tables\": { " + lut.arg("MinAngle", Viridis(60.0)) +
     ", " + lut.arg("MinDihedralAngle", Viridis(70.5)) + " } }";
   vtkSMSettings::GetInstance()->AddCollectionFromString(json.toStdString(), 0.0);
@@ -224,27 +288,42 @@ void pqGPUDelaunayGUI::onRepresentationAdded(pqRepresentation* representation)
       auto* data = qobject_cast<pqDataRepresentation*>(repr.data());
       pqView* view = data ? data->getView() : nullptr;
       pqOutputPort* port = data ? data->getOutputPortFromInput() : nullptr;
-      if (!view || !port || port->getPortNumber() != 1 ||
-        view->getViewType() != "XYBarChartView")
+      if (!view || !port)
       {
         return;
       }
       const char* name = port->getSource()->getProxy()->GetXMLName();
-      const bool is2D = strcmp(name, "GPUConstrainedDelaunay2D") == 0;
-      if (!is2D && strcmp(name, "GPUQualityTetMesh") != 0)
+      if (strcmp(name, "GPURestrictedDelaunay3D") == 0 && port->getPortNumber() == 0 &&
+        view->getViewType() == "RenderView")
+      {
+        ShowSurfaceWithoutTetrahedra(data, port, view);
+        return;
+      }
+      const HistogramChart* histogram = FindHistogramChart(name, port->getPortNumber());
+      if (!histogram || view->getViewType() != "XYBarChartView")
       {
         return;
       }
-      // The legend names the counted things instead of the column name.
+      // The legend names the counted things instead of the column names.
       vtkSMPropertyHelper label(data->getProxy(), "SeriesLabel");
-      label.Set(0, is2D ? "bin_values" : "DihedralAngleCount");
-      label.Set(1, is2D ? "triangles" : "dihedral angles");
+      for (const auto& series : histogram->Series)
+      {
+        label.SetStatus(series.first, series.second);
+      }
+      if (histogram->Series.size() > 1)
+      {
+        // Two series of 180 bars each are too thin to read: the restricted mesher's chart
+        // shows the dihedral angles, or the facet angles when there are no tetrahedra.
+        const bool tets =
+          port->getSource()->getOutputPort(0)->getDataInformation()->GetNumberOfCells() > 0;
+        vtkSMPropertyHelper(data->getProxy(), "SeriesVisibility")
+          .SetStatus(histogram->Series[tets ? 1 : 0].first, 0);
+      }
       data->getProxy()->UpdateVTKObjects();
       vtkSMProxy* chart = view->getProxy();
-      vtkSMPropertyHelper(chart, "ChartTitle")
-        .Set(is2D ? "Minimum angle per triangle" : "Dihedral angles");
+      vtkSMPropertyHelper(chart, "ChartTitle").Set(histogram->Title);
       vtkSMPropertyHelper(chart, "BottomAxisTitle").Set("degrees");
-      vtkSMPropertyHelper(chart, "LeftAxisTitle").Set(is2D ? "triangles" : "dihedral angles");
+      vtkSMPropertyHelper(chart, "LeftAxisTitle").Set(histogram->LeftAxis);
       chart->UpdateVTKObjects();
       view->render();
     });

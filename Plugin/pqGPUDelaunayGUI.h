@@ -16,7 +16,10 @@
  * It also gives the quality arrays MinAngle and MinDihedralAngle a fixed colour range
  * (0 to 60 and 0 to 70.5 degrees, the equilateral triangle's and the regular
  * tetrahedron's angles) through low-priority ParaView settings that user settings
- * override, and titles the histogram charts.
+ * override, and titles the histogram charts. For the restricted Delaunay filter it shows
+ * one of its two histograms (the facet angles when there are no tetrahedra, else the
+ * dihedral angles), and when a run gives no tetrahedra (an open surface, or Mesh Volume
+ * off), the surface port instead of the empty tetrahedra.
  * It only acts in a builtin session (the GUI and the filters in one process).
  */
 

@@ -64,7 +64,7 @@ set(_gdr_python_package "${CMAKE_BINARY_DIR}/${GDR_PYTHON_DESTINATION}/gpudelaun
 set(_gdr_python_init "${_gdr_python_package}/__init__.py")
 file(GENERATE OUTPUT "${_gdr_python_init}" CONTENT
 "\"\"\"GPU Delaunay mesh refinement for VTK (vtkGPUConstrainedDelaunay2D,
-vtkGPUQualityTetMesh) and NumPy (refine_2d).\"\"\"
+vtkGPUQualityTetMesh, vtkGPURestrictedDelaunay3D) and NumPy (refine_2d).\"\"\"
 import vtkmodules.vtkCommonExecutionModel  # noqa: F401  (base classes)
 from .GPUDelaunayFilters import *  # noqa: F401,F403
 from .meshing import (MeshingError, MeshingWarning, MeshResult, refine_2d,  # noqa: F401
