@@ -37,7 +37,8 @@ tetrahedra inside it and the surface around them; an open surface, or --surface-
 gives the surface alone. Non-manifold or self-intersecting surfaces are refused with the
 edges or faces named. OUTPUT is written by its extension:
   .vtu   the tetrahedra (cell arrays RadiusEdgeRatio, MinDihedralAngle, MaxDihedralAngle,
-         Volume, IsBad; point array PointType: 0 input point, 3 on the surface, 2 inside),
+         Volume, IsBad; point array PointType: 0 corner, 1 on a feature edge, 3 on the
+         surface, 2 inside),
          and the surface beside it as NAME_surface.vtp (cell arrays MinAngle, Size,
          Distance, IsBad)
   .mesh  Medit: tetrahedra and surface triangles
@@ -54,6 +55,12 @@ Criteria (CGAL Mesh_3's names; sizes default to fractions of the bounding box di
                            (default 2; at least 1; 0 turns it off)
   --cell-size S            largest circumradius of a tetrahedron (default: the facet size)
   A size of 0 turns that criterion off.
+  --feature-angle DEG      keep sharp features: input edges whose triangles' normals differ
+                           by more than DEG (and the boundary of an open surface) are kept
+                           as chains of surface edges, their corners as vertices (default 0:
+                           none; 30 suits CAD parts). Next to features at small angles, the
+                           triangles and tetrahedra that cannot meet the criteria are left
+                           and counted as bad
   --surface-only           mesh the surface only, even when it is closed
   --max-steiner N          stop cleanly after inserting N points (default: no cap where
                            refinement terminates; an automatic cap below --cell-radius-edge 2)
@@ -63,7 +70,8 @@ Checking and reporting:
   --check                  validate the result: the surface a closed, oriented 2-manifold
                            without self-intersections (for a closed input), the tetrahedra
                            positive with the surface as their boundary, the whole Delaunay
-                           triangulation Delaunay (exact insphere); exit code 1 when invalid
+                           triangulation Delaunay (exact insphere), every sharp feature a
+                           chain of surface edges; exit code 1 when invalid
   --stats-json FILE        write the options, statistics, histograms and validation as JSON
   -q, --quiet              no progress, warnings or summary; errors only
   -h, --help               this text
@@ -72,6 +80,7 @@ Examples:
   gdr rdt scan.off -o scan.vtu --facet-size 0.5 --facet-distance 0.05 --check
   gdr rdt open_scan.ply -o open_scan.vtp
   gdr rdt part.stl -o part.mesh --cell-radius-edge 3
+  gdr rdt cad_part.off -o cad_part.vtu --feature-angle 30 --check
 
 Exit codes: 0 ok, 1 invalid mesh (--check), 2 usage error (also: an output that would
 overwrite an input), 3 input error, 4 device error, 5 internal error, 130 interrupted.
@@ -112,6 +121,7 @@ ArgsRdt parse_rdt(const std::vector<std::string>& args) {
       number("facet-distance", a.options.facet_distance),
       number("cell-radius-edge", a.options.cell_radius_edge_ratio),
       number("cell-size", a.options.cell_size),
+      number("feature-angle", a.options.feature_angle),
       {"surface-only", 0, false, [&](const std::string&) { a.options.mesh_volume = false; }},
       {"max-steiner", 0, true,
        [&](const std::string& v) {
@@ -136,6 +146,7 @@ ArgsRdt parse_rdt(const std::vector<std::string>& args) {
   }
   if (a.options.facet_angle > 30)
     throw UsageError(cmd, "--facet-angle must be at most 30 (above, refinement need not terminate)");
+  if (a.options.feature_angle >= 180) throw UsageError(cmd, "--feature-angle must be below 180");
   return a;
 }
 
@@ -188,13 +199,14 @@ void write_outputs(const ArgsRdt& a, const RestrictedDelaunayResult& r) {
 }
 
 struct Reports {
-  ValidationReport surface, tets, triangulation;
-  bool valid() const { return surface.valid && tets.valid && triangulation.valid; }
+  ValidationReport surface, features, tets, triangulation;
+  bool valid() const { return surface.valid && features.valid && tets.valid && triangulation.valid; }
 };
 
 Reports check_mesh(const RestrictedDelaunayResult& r) {
   Reports rep;
   rep.surface = validate_surface(r.mesh.points, r.mesh.subfaces, r.stats.closed_input);
+  rep.features = validate_surface_features(r.mesh.points, r.mesh.subfaces, r.mesh.subsegments, r.features);
   ValidateOptions vo;
   vo.check_conformity = false;
   if (r.stats.volume_meshed) rep.tets = validate_tetmesh(r.mesh, nullptr, vo);
@@ -217,6 +229,10 @@ void print_summary(const ArgsRdt& a, const RestrictedDelaunayResult& r, const Re
                           " surface triangles, " + with_commas(s.output_tets) + " tetrahedra"});
   info.row({"points inserted", with_commas(s.steiner_points) + " (" + with_commas(s.initial_points) +
                                    " initial) in " + std::to_string(s.iterations) + " iterations"});
+  if (s.feature_edges > 0)
+    info.row({"features", with_commas(s.feature_edges) + " input edges, " + with_commas(s.corners) + " corners (feature angle " +
+                              fixed(s.feature_angle, 1) + " deg); " + with_commas(s.feature_points) +
+                              " output points on them"});
   if (s.steiner_cap_reached) info.row({"", "stopped at the cap of " + with_commas(s.steiner_cap)});
   if (s.stalled) info.row({"", "stalled: bad elements remain that no point could fix"});
   info.row({"backend", backend_line(s.backend_used, s.device_name)});
@@ -229,6 +245,12 @@ void print_summary(const ArgsRdt& a, const RestrictedDelaunayResult& r, const Re
                                 fixed(s.volume, 6) + ", " + with_commas(s.bad_tets) + " bad"});
   if (rep) {
     info.row({"check surface", (rep->surface.valid ? "valid: " : "INVALID: ") + rep->surface.summary()});
+    if (s.feature_edges > 0)
+      info.row({"check features", (rep->features.valid ? "valid: " : "INVALID: ") +
+                                       with_commas(static_cast<long long>(r.mesh.subsegments.size())) +
+                                       " subsegments, " + std::to_string(rep->features.missing_segments) +
+                                       " features not kept, " + std::to_string(rep->features.invalid_subsegments) +
+                                       " subsegments not on the surface"});
     if (s.volume_meshed)
       info.row({"check tetrahedra", (rep->tets.valid ? "valid: " : "INVALID: ") + rep->tets.summary()});
     info.row({"check Delaunay", (rep->triangulation.valid ? "valid: " : "INVALID: ") +
@@ -267,6 +289,7 @@ void write_stats_json(const ArgsRdt& a, const RestrictedDelaunayResult& r, const
   j.field("facet_distance", s.facet_distance);
   j.field("cell_radius_edge_ratio", s.cell_radius_edge_ratio);
   j.field("cell_size", s.cell_size);
+  j.field("feature_angle", s.feature_angle);
   j.field("mesh_volume", a.options.mesh_volume);
   j.field("max_steiner_points", a.options.max_steiner_points);
   j.field("backend", to_string(a.options.backend));
@@ -281,6 +304,10 @@ void write_stats_json(const ArgsRdt& a, const RestrictedDelaunayResult& r, const
   j.field("input_points", s.input_points);
   j.field("input_triangles", s.input_triangles);
   j.field("initial_points", s.initial_points);
+  j.field("feature_edges", s.feature_edges);
+  j.field("corners", s.corners);
+  j.field("feature_points", s.feature_points);
+  j.field("feature_min_length", s.feature_min_length);
   j.field("steiner_points", s.steiner_points);
   j.field("triangulation_points", s.triangulation_points);
   j.field("triangulation_tets", s.triangulation_tets);
@@ -338,6 +365,7 @@ void write_stats_json(const ArgsRdt& a, const RestrictedDelaunayResult& r, const
     j.begin_object();
     j.field("valid", rep->valid());
     j.field("surface", rep->surface.summary());
+    j.field("features", rep->features.summary());
     j.field("tetrahedra", s.volume_meshed ? rep->tets.summary() : std::string());
     j.field("non_delaunay", static_cast<unsigned long long>(rep->triangulation.non_delaunay));
     j.end_object();

@@ -4,6 +4,13 @@
 // The output approximates the input surface rather than keeping it: surface vertices lie on
 // it (up to rounding), surface triangles are the restricted facets (Delaunay faces whose
 // Voronoi dual meets the input), tetrahedra are those whose circumcentre lies inside it.
+//
+// Sharp features (optional: FeatureAngle, or the input's segments) are kept: feature edges
+// are sampled first and protected as constrained segments are in Ruppert's refinement (a
+// point in the diametral ball of a feature subsegment is refused and the subsegment split
+// instead), so the output has every corner as a vertex and every feature edge as a chain of
+// surface edges. Next to features at small angles, facets and cells that cannot meet the
+// criteria are left as they are and reported (bad_facets, bad_tets).
 #pragma once
 #include <array>
 #include <cstddef>
@@ -27,6 +34,10 @@ struct RestrictedDelaunayOptions {
   double cell_radius_edge_ratio = 2.0;  // CellRadiusEdgeRatio: 0 off, else at least 1 (2: guaranteed)
   double cell_size = -1.0;              // CellSize: circumradius (auto: the facet size)
   bool mesh_volume = true;              // MeshVolume: false (or an open input): surface only
+  // FeatureAngle, degrees in [0, 180): input edges whose two triangles' normals differ by
+  // more than this are sharp features, and so are the boundary edges of an open surface; 0
+  // (the default) detects none. The input's segments are features in any case.
+  double feature_angle = 0.0;
   // Refinement stops cleanly at this many Steiner points. -1 (automatic): a cap applies only
   // where termination is not guaranteed (radius-edge ratio below 2).
   long long max_steiner_points = -1;
@@ -42,6 +53,8 @@ struct RestrictedDelaunayStats {
   int iterations = 0;
   long long input_points = 0, input_triangles = 0;
   long long initial_points = 0;            // input points sampled for the initial triangulation
+  long long feature_edges = 0, corners = 0;  // input feature edges and corners (FeatureAngle)
+  long long feature_points = 0;            // output vertices on features (corners included)
   long long steiner_points = 0;            // inserted by the refinement
   long long triangulation_points = 0, triangulation_tets = 0;  // the whole Delaunay triangulation
   long long output_points = 0, output_tets = 0, output_triangles = 0;
@@ -53,7 +66,8 @@ struct RestrictedDelaunayStats {
   double min_dihedral_deg = 0, max_dihedral_deg = 0, max_radius_edge = 0;
   double volume = 0, area = 0;             // of the output
   double facet_angle = 0, facet_size = 0, facet_distance = 0, cell_radius_edge_ratio = 0,
-         cell_size = 0;                    // the criteria in effect (automatic sizes resolved)
+         cell_size = 0, feature_angle = 0;  // the criteria in effect (automatic sizes resolved)
+  double feature_min_length = 0;           // feature subsegments shorter are not split
   double input_seconds = 0, initial_seconds = 0, refine_seconds = 0, output_seconds = 0,
          total_seconds = 0;
   std::size_t peak_device_bytes = 0;
@@ -63,9 +77,13 @@ struct RestrictedDelaunayStats {
 struct RestrictedDelaunayResult {
   // Points used by the output; tets: those inside the surface (empty for a surface only);
   // subfaces: the restricted surface triangles (outward for a closed input, following the
-  // input's orientation for an open one). point_type: Input (an input point from the
-  // initial sample) and Facet (inserted) lie on the surface, Free inside it.
+  // input's orientation for an open one); subsegments: the surface edges on sharp features.
+  // point_type: Input at corners, Segment on a feature edge, Facet on the surface (sampled or
+  // inserted), Free inside it.
   TetMesh mesh;
+  // The input's feature edges, as pairs of mesh points (their ends): each is a chain of
+  // mesh.subsegments (validate_surface_features).
+  std::vector<std::array<int, 2>> features;
   // Per surface triangle.
   std::vector<float> facet_min_angle;    // degrees
   std::vector<double> facet_size;        // surface Delaunay ball radius

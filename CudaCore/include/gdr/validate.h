@@ -87,6 +87,16 @@ ValidationReport validate_surface(const std::vector<Point3>& points,
                                   const std::vector<std::array<int, 3>>& triangles, bool closed,
                                   const ValidateOptions& options = {});
 
+// Sharp features of such a surface: every subsegment is an edge of one of its triangles, and
+// every feature (a pair of surface points) is a chain of subsegments running along it (its
+// vertices within options.segment_tolerance of the straight edge, relative to its length).
+// Counts go to invalid_subsegments and missing_segments.
+ValidationReport validate_surface_features(const std::vector<Point3>& points,
+                                           const std::vector<std::array<int, 3>>& triangles,
+                                           const std::vector<std::array<int, 2>>& subsegments,
+                                           const std::vector<std::array<int, 2>>& features,
+                                           const ValidateOptions& options = {});
+
 // Quality only (no topology), e.g. for arrays in filters.
 QualityStats triangle_quality(const TriMesh& mesh, double min_angle_deg = 0);
 QualityStats tet_quality(const TetMesh& mesh, double max_radius_edge = 0);

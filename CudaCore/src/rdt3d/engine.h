@@ -70,6 +70,7 @@ struct Engine {
   Buf<int> stri, sorder, skids;
   AabbView tree{};
   bool stagnant = false;
+  bool features = false;  // the mesh has feature subsegments
   const bool trace = std::getenv("GDR_TRACE") != nullptr;
   m3d::StallDetector stall;
 
@@ -80,6 +81,7 @@ struct Engine {
     const std::size_t mem_base = exec::memory_counter<Space>().current;
     auto& dm = core.dm;
     dm.upload(host);
+    features = host.segments() > 0;
     core.counters.resize_discard(decltype(core)::kCounters);
     core.counters.zero();
     sxyz.upload(surface.xyz);
@@ -92,6 +94,7 @@ struct Engine {
     core.clock.template stop<Space>("upload");
     classify();
     int idle = 0;
+    std::size_t backlog = ~std::size_t(0);
     for (int iter = 0; iter < params.insertion.max_iterations; ++iter) {
       if (cb.abort && cb.abort()) throw Error(Status::Aborted, "refinement aborted by the caller");
       core.clock.restart();
@@ -101,7 +104,7 @@ struct Engine {
       compute_splitting_points(nl, iter);     // line 5
       const std::size_t ns = core.filter(nl);  // S3
       core.grow_cavities(ns);                 // lines 6-7 (S2, S5)
-      refuse_encroaching_cells();
+      refuse_cavities();
       const long long won = core.verify_and_number(ns);
       stagnant = !stagnant && won * 50 < static_cast<long long>(ns);
       core.stagnant = stagnant;
@@ -109,8 +112,11 @@ struct Engine {
         core.insert(ns, won);  // line 8
         mark_surface_points(ns);
         classify();            // line 9: reclassify the new facets and tetrahedra
-        idle = 0;
-      } else if (++idle >= 8) {
+      }
+      // Idle: nothing inserted, and nothing left as an exception either.
+      idle = won > 0 || nl < backlog ? 0 : idle + 1;
+      backlog = nl;
+      if (idle >= 8) {
         res.stalled = true;
         break;
       }
@@ -169,12 +175,16 @@ struct Engine {
     core.clock.template stop<Space>("split+locate");
   }
 
-  void refuse_encroaching_cells() {
-    if (!params.criteria.volume) return;
+  // The cavities that grew are refused where they would take a feature away (KeepFeatures)
+  // or spoil a restricted facet (RefuseEncroachingCells).
+  void refuse_cavities() {
     const m3d::TetView mv = core.dm.view();
     const std::size_t nt = core.tuples.size();
-    Ops::for_each(nt, RefuseEncroachingCells{mv, tree, params.criteria, core.cand.data(),
-                                             core.tuples.data(), core.failed.data()});
+    if (features)
+      Ops::for_each(nt, KeepFeatures{mv, params.criteria, core.cand.data(), core.tuples.data(), core.failed.data()});
+    if (params.criteria.volume)
+      Ops::for_each(nt, RefuseEncroachingCells{mv, tree, params.criteria, core.cand.data(),
+                                               core.tuples.data(), core.failed.data()});
     // The cavities of the points refused here are no longer inserted.
     Ops::for_each(nt, m3d::SetInCavity{mv, core.tuples.data(), core.failed.data(), 0});
     core.clock.template stop<Space>("cavity");
@@ -187,7 +197,7 @@ struct Engine {
     const int* fl = core.failed.data();
     const int* pid = core.point_id.data();
     Ops::for_each(ns, [=] GDR_HD(long long j) {
-      if (!fl[j] && cs[j].a == kSurfacePoint) mv.ptype[pid[j]] = m3d::kFacetPoint;
+      if (!fl[j] && cs[j].kind == m3d::kFreeSplit && cs[j].a == kSurfacePoint) mv.ptype[pid[j]] = m3d::kFacetPoint;
     });
   }
 

@@ -9,7 +9,9 @@
 #include "exec/priority.h"
 #include "mesh3d/cavity.h"
 #include "mesh3d/locate.h"
+#include "qm3d/kernels.h"  // make_segment_candidate
 #include "rdt3d/aabb.h"
+#include "rdt3d/circumcentre.h"
 
 namespace gdr::rdt3d {
 
@@ -27,12 +29,17 @@ struct Criteria {
   double cell_size2 = 0;        // CellSize^2: circumradius
   int volume = 1;               // 1: classify and refine tetrahedra inside the surface
   double reach = 0;             // longer than any segment from inside the box out of it
+  double feature_min2 = 0;      // feature subsegments shorter than this (squared) are not split
   int step_limit = 1 << 20;     // point-location walk bound
 };
 
-// Tetrahedron flag bits of this mesher. It has no subfaces or subsegments, and runs its own
-// collect phase, so it keeps its per-tetrahedron state in the bits gQM3d uses for its collect
-// mask (m3d::kCollectBits; compaction moves them with the tetrahedron).
+// Tetrahedron flag bits of this mesher. It has no subfaces, and runs its own collect phase, so
+// it keeps its per-tetrahedron state in the bits gQM3d uses for its collect mask
+// (m3d::kCollectBits; compaction moves them with the tetrahedron). Sharp features are
+// subsegments as in gQM3d (m3d::kSeg0 edge bits; split requests in m3d::kSplitEdge0), and
+// m3d::kProtected marks a tetrahedron whose bad facets and cell are left as they are
+// (exceptions: their splitting point lies in the diametral ball of a feature subsegment too
+// short to split).
 enum : int {
   kRestricted0 = 1 << m3d::kCollectShift,  // bits 19-22: face i is a restricted facet
   kRestrictedBits = 15 << m3d::kCollectShift,
@@ -44,15 +51,16 @@ enum : int {
 // set to kFacetPoint after insertion.
 enum : int { kSurfacePoint = 1 };
 
-// Points on the surface: the sample of input points and inserted surface centres (box
-// corners and circumcentres are free points).
+// Points on the surface: the sample of input points, feature points (kInputPoint at input
+// vertices, kSegmentPoint between) and inserted surface centres (box corners and
+// circumcentres are free points).
 GDR_HD_INLINE bool on_surface(const TetView& m, int v) {
-  return m.ptype[v] == m3d::kInputPoint || m.ptype[v] == m3d::kFacetPoint;
+  return m.ptype[v] != m3d::kFreePoint;
 }
 
 GDR_HD_INLINE bool tet_center(const TetView& m, int t, double* c) {
   const int* v = m.tv + 4 * t;
-  return m3d::tet_circumcenter(pt(m, v[0]), pt(m, v[1]), pt(m, v[2]), pt(m, v[3]), c);
+  return accurate_tet_circumcenter(pt(m, v[0]), pt(m, v[1]), pt(m, v[2]), pt(m, v[3]), c);
 }
 
 // The Voronoi edge dual to face f of t, from t's circumcentre p to the neighbour's q; on the
@@ -132,8 +140,9 @@ GDR_HD_INLINE TetSize tet_size(const TetView& m, int t) {
 // CGAL Mesh_3's rule: a tetrahedron's circumcentre is not inserted where it would destroy a
 // restricted facet whose surface Delaunay ball holds it (it would spoil the surface next to
 // it, and the surface refinement could cascade); the facet is refined instead (the
-// kSplitFace0 bit of its face: this mesher has no subfaces). Runs on the cavities that
-// passed every other check, before the winners are numbered.
+// kSplitFace0 bit of its face: this mesher has no subfaces), unless that facet is an
+// exception (its tetrahedron is protected): the cell is then left as it is too. Runs on the
+// cavities that passed every other check, before the winners are numbered.
 struct RefuseEncroachingCells {
   TetView m;
   AabbView s;
@@ -145,7 +154,7 @@ struct RefuseEncroachingCells {
     const m3d::CavityTuple& h = tuples[i];
     if (m3d::is_sub_tuple(h) || m3d::result_of(h) != m3d::kCavity || failed[h.pt]) return;
     const Candidate& p = cand[h.pt];
-    if (p.a == kSurfacePoint) return;
+    if (p.kind != m3d::kFreeSplit || p.a == kSurfacePoint) return;
     const int t = h.elem, flags = m.tflag[t];
     for (int f = 0; f < 4; ++f) {
       if (!(flags & (kRestricted0 << f))) continue;
@@ -154,9 +163,97 @@ struct RefuseEncroachingCells {
       if (!surface_centre(m, s, c, t, f, x, &tri)) continue;
       const double r2 = m3d::dist2(x, pt(m, m.tv[4 * t + m3d::face_corner(f, 0)]));
       if (m3d::dist2(p.p, x) < r2) {
-        exec::atomic_or(&m.tflag[t], m3d::kSplitFace0 << f);
+        if (!(flags & m3d::kProtected)) exec::atomic_or(&m.tflag[t], m3d::kSplitFace0 << f);
+        else if (p.origin >= 0) m3d::protect_tet(m.tflag, p.origin);
         failed[h.pt] = m3d::kFailEncroach;
       }
+    }
+  }
+};
+
+// Feature subsegments are split when a point would take them away, unless they are shorter
+// than feature_min or blocked: a subsegment whose split point would take away a subsegment
+// of another feature (two features at a small angle: each split would undo the other)
+// blocks itself by giving both its ends a protecting radius (m.prad) at least its length.
+// Left as they are, they let refinement next to small angles terminate.
+GDR_HD_INLINE bool splittable(const TetView& m, const Criteria& c, int a, int b) {
+  const double d2 = m3d::dist2(pt(m, a), pt(m, b));
+  const double ra = m.prad[a], rb = m.prad[b];
+  return d2 >= c.feature_min2 && !(ra * ra >= d2 && rb * rb >= d2);
+}
+
+GDR_HD_INLINE void block(const TetView& m, int a, int b) {
+  // Rounded up, so that the radius is never below the length.
+  const float r = static_cast<float>(sqrt(m3d::dist2(pt(m, a), pt(m, b))) * (1 + 1e-6));
+  if (m.prad[a] < r) m.prad[a] = r;
+  if (m.prad[b] < r) m.prad[b] = r;
+}
+
+// Does the cavity of point j hold every tetrahedron around edge ab of t? Bowyer-Watson then
+// removes the edge.
+GDR_HD_INLINE bool ring_in_cavity(const TetView& m, int t, int a, int b, int j) {
+  auto mine = [&](int u) { return (m.tflag[u] & m3d::kInCavity) && m.mark[u] == j + 1; };
+  int u = t, g = -1;
+  for (int f = 0; f < 4 && g < 0; ++f)
+    if (m.tv[4 * t + f] != a && m.tv[4 * t + f] != b) g = f;
+  for (int guard = 0; guard < 1000; ++guard) {
+    if (!mine(u)) return false;
+    const int nb = m.tn[4 * u + g];
+    if (nb < 0) return false;
+    u = nb >> 2;
+    if (u == t) return true;  // all the way round
+    g = m3d::other_face_at_edge(m, u, nb & 3, a, b);
+  }
+  return false;
+}
+
+// Sharp features stay: a point whose cavity would take a feature subsegment away (every
+// tetrahedron around it; the one a point on a feature splits aside) is not inserted, and the
+// subsegment is split instead. GrowCavity already refuses free points strictly inside a
+// subsegment's diametral ball (Ruppert); this catches points on its sphere and points on a
+// feature next to another one at a small angle (its subsegment is blocked). A subsegment
+// that may not be split makes the free point that wanted it gone give up what asked for it:
+// the two tetrahedra of the facet, or the bad cell, are protected, and reported as
+// exceptions. Runs on the winning cavities
+// (and on the free points GrowCavity refused for encroachment), before the winners are
+// numbered.
+struct KeepFeatures {
+  TetView m;
+  Criteria c;
+  const Candidate* cand;
+  const m3d::CavityTuple* tuples;
+  int* failed;
+  GDR_HD void operator()(long long i) const {
+    const m3d::CavityTuple& h = tuples[i];
+    if (m3d::is_sub_tuple(h) || m3d::result_of(h) != m3d::kCavity) return;
+    const int t = h.elem, flags = m.tflag[t];
+    if (!(flags & m3d::kSegBits)) return;
+    const Candidate& p = cand[h.pt];
+    const int why = failed[h.pt];
+    for (int e = 0; e < 6; ++e) {
+      if (!(flags & (m3d::kSeg0 << e))) continue;
+      const int a = m.tv[4 * t + m3d::edge_corner(e, 0)], b = m.tv[4 * t + m3d::edge_corner(e, 1)];
+      if (p.kind == m3d::kSegmentSplit && ((a == p.a && b == p.b) || (a == p.b && b == p.a))) continue;
+      const bool can_split = splittable(m, c, a, b);
+      if (why == 0 && ring_in_cavity(m, t, a, b, h.pt)) {
+        failed[h.pt] = m3d::kFailEncroach;
+        if (p.kind == m3d::kSegmentSplit) block(m, p.a, p.b);
+        else if (can_split) exec::atomic_or(&m.tflag[t], m3d::kSplitEdge0 << e);
+        else give_up(p);
+      } else if (why == m3d::kFailEncroach && !can_split &&
+                 pred::in_diametral_sphere(pt(m, a), pt(m, b), p.p) > 0) {
+        give_up(p);
+      }
+    }
+  }
+  GDR_HD void give_up(const Candidate& p) const {
+    if (p.kind != m3d::kFreeSplit) return;
+    if (p.a == kSurfacePoint) {  // b: the facet, 4t + f
+      m3d::protect_tet(m.tflag, p.b >> 2);
+      const int nb = m.tn[p.b];
+      if (nb >= 0) m3d::protect_tet(m.tflag, nb >> 2);
+    } else if (p.origin >= 0) {
+      m3d::protect_tet(m.tflag, p.origin);
     }
   }
 };
@@ -219,16 +316,22 @@ struct ClearFresh {
 };
 
 // ---------------------------------------------------------------------------------------
-// Collect (S4: one list): bad restricted facets and bad tetrahedra inside the surface, as
-// 8t + slot (slot f < 4: face f; slot 4: the tetrahedron). The count per tetrahedron goes to
-// aux, which the engine scans in place into list offsets. Facets are read off the bits
-// ClassifyFresh keeps.
-enum : int { kSlotCell = 4 };
+// Collect (S4: one list): feature subsegments to split, bad restricted facets and bad
+// tetrahedra inside the surface, as 16t + slot (slot f < 4: face f; slot 4: the tetrahedron;
+// slot 5 + e: edge e). The count per tetrahedron goes to aux, which the engine scans in place
+// into list offsets. Facets are read off the bits ClassifyFresh keeps; a protected
+// tetrahedron lists no facet and no cell (exceptions).
+enum : int { kSlotCell = 4, kSlotEdge0 = 5, kSlots = 11 };
 
 GDR_HD_INLINE int collect_mask(const TetView& m, const Criteria& c, int t) {
   const int flags = m.tflag[t];
   if (flags & m3d::kDead) return 0;
   int mask = 0;
+  for (int e = 0; e < 6; ++e)
+    if ((flags & (m3d::kSplitEdge0 << e)) && (flags & (m3d::kSeg0 << e)) &&
+        splittable(m, c, m.tv[4 * t + m3d::edge_corner(e, 0)], m.tv[4 * t + m3d::edge_corner(e, 1)]))
+      mask |= 1 << (kSlotEdge0 + e);
+  if (flags & m3d::kProtected) return mask;
   for (int f = 0; f < 4; ++f) {
     if (!(flags & (kRestricted0 << f))) continue;
     if (flags & (m3d::kSplitFace0 << f)) {  // a cell's circumcentre encroached it
@@ -250,7 +353,7 @@ struct CountBad {
   GDR_HD void operator()(long long i) const {
     const int mask = collect_mask(m, c, static_cast<int>(i));
     int n = 0;
-    for (int k = 0; k < 5; ++k) n += (mask >> k) & 1;
+    for (int k = 0; k < kSlots; ++k) n += (mask >> k) & 1;
     m.aux[i] = n;
   }
 };
@@ -266,17 +369,21 @@ struct ListBad {
     if (next == m.aux[t]) return;  // nothing listed here (the scan did not step)
     const int mask = collect_mask(m, c, t);
     int o = m.aux[t];
-    for (int k = 0; k < 5; ++k)
-      if (mask & (1 << k)) list[o++] = 8 * t + k;
+    for (int k = 0; k < kSlots; ++k)
+      if (mask & (1 << k)) list[o++] = 16 * t + k;
   }
 };
 
 // ---------------------------------------------------------------------------------------
-// Splitting points (Algorithm 5): the surface centre of a bad facet, the circumcentre of a
-// bad tetrahedron; located by walking from the element. Priorities: facets first (larger
-// surface balls first), then tetrahedra too big (larger first), then tetrahedra bad by shape
-// (worst radius-edge ratio first); a pseudo-random id inside a size class.
-enum : unsigned { kClassShape = 0, kClassCellSize = 1, kClassFacet = 3 };
+// Splitting points (Algorithm 5): the point of a feature subsegment that gQM3d splits it at,
+// the surface centre of a bad facet, the circumcentre of a bad tetrahedron; located by
+// walking from the element. Priorities: feature subsegments first (qm3d's segment class,
+// larger first), then facets (larger surface balls first), then tetrahedra too big (larger
+// first), then tetrahedra bad by shape (worst radius-edge ratio first); a pseudo-random id
+// inside a size class. A facet's point keeps its face (b = 4t + f) and a cell's point its
+// tetrahedron (origin), for KeepFeatures to give up.
+enum : unsigned { kClassShape = 0, kClassCellSize = 1, kClassFacet = 2 };
+static_assert(unsigned(qm3d::kClassSegment) > unsigned(kClassFacet), "feature subsegments are split first");
 
 GDR_HD_INLINE float size_class(double size) {
   if (!(size > 0) || !(size < 1e38)) return size > 0 ? 1e38f : 0.0f;
@@ -308,7 +415,13 @@ struct ComputeSplittingPoints {
     const unsigned id = shuffle_id(static_cast<unsigned>(j), salt);
     if (id >= keep_below) return;
     const int e = list[j];
-    const int t = e >> 3, slot = e & 7;
+    const int t = e >> 4, slot = e & 15;
+    if (slot >= kSlotEdge0) {
+      qm3d::make_segment_candidate(m, t, slot - kSlotEdge0, id, cand);
+      cand.ek = m3d::kDelaunayPoint;  // no constraints: only a star-shaped cavity is needed
+      if (shuffle && cand.kind >= 0) cand.prio = exec::make_priority(unsigned(cand.prio >> 62), 0.0f, id);
+      return;
+    }
     double p[3];
     u64 prio;
     bool surface = false;
@@ -333,8 +446,8 @@ struct ComputeSplittingPoints {
     cand.start = start;
     cand.sub = -1;
     cand.a = surface ? kSurfacePoint : -1;
-    cand.b = -1;
-    cand.origin = -1;
+    cand.b = surface ? 4 * t + slot : -1;
+    cand.origin = surface ? -1 : t;
     cand.kind = m3d::kFreeSplit;
     cand.ek = m3d::kDelaunayPoint;
   }

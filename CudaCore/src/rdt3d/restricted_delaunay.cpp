@@ -1,13 +1,16 @@
 // gDP3d facade: the paper's Algorithm 5 end to end.
-//   1. check the surface (cdt3d's checks; an open surface is meshed as a surface only);
-//   2. the Delaunay triangulation of a sample of its points and a bounding box (TetGen), all
-//      tetrahedra kept (line 1);
+//   1. check the surface (cdt3d's checks; an open surface is meshed as a surface only) and
+//      find its sharp features (rdt3d/features.h);
+//   2. the Delaunay triangulation of the feature vertices, a sample of the other points and a
+//      bounding box (TetGen), all tetrahedra kept (line 1), feature edges split until each
+//      piece is an edge of it (a feature subsegment);
 //   3. refine on the chosen backend (lines 2-10, engine.h);
 //   4. the restricted surface and the tetrahedra inside it, with their quality.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <set>
 #include <new>
 #include <random>
 #include <string>
@@ -18,7 +21,9 @@
 #include "gdr/rdt3d.h"
 #include "gdr/validate.h"
 #include "mesh3d/scale.h"
+#include "mesh3d/tet_topology.h"
 #include "rdt3d/engine_dispatch.h"
+#include "rdt3d/features.h"
 
 namespace gdr {
 namespace {
@@ -77,6 +82,120 @@ std::vector<std::vector<int>> components(const cdt3d::Plc& plc) {
 
 double automatic(double value, double fallback) { return value < 0 ? fallback : value; }
 
+struct Piece {
+  int a, b, segment;
+};
+
+// Features meeting at a small angle would undo each other's splits: a point splitting one
+// lies in the diametral ball of the other's subsegment beside it, and takes it away. Their
+// edges are split first at distances from the corner in a geometric sequence of ratio q, the
+// same on every edge there, down to feature_min: a piece [r, q r] split at its midpoint then
+// stays out of the ball of its neighbour [r, q r] on the other edge when
+// q <= (1 + 2 sin(a/2)) / (1 - 2 sin(a/2)) for the angle a between them. At 60 degrees and
+// above nothing is needed. Appends the points to xyz and returns the pieces.
+std::vector<Piece> grade_small_angles(std::vector<double>& xyz, const std::vector<std::array<int, 2>>& ends,
+                                      double feature_min, std::vector<int>& point_segment) {
+  auto at = [&](int v) { return &xyz[3 * std::size_t(v)]; };
+  auto length = [&](int s) { return std::sqrt(m3d::dist2(at(ends[s][0]), at(ends[s][1]))); };
+  std::map<int, std::vector<int>> around;  // feature vertex -> its edges
+  for (std::size_t s = 0; s < ends.size(); ++s)
+    for (int v : ends[s]) around[v].push_back(static_cast<int>(s));
+  std::vector<double> ratio(xyz.size() / 3, 0), base(xyz.size() / 3, 0);  // per acute corner
+  for (const auto& [v, edges] : around) {
+    double smallest = kPi;
+    for (std::size_t i = 0; i < edges.size(); ++i)
+      for (std::size_t j = i + 1; j < edges.size(); ++j) {
+        const int* e = ends[edges[i]].data();
+        const int* f = ends[edges[j]].data();
+        const double* o = at(v);
+        const double* p = at(e[0] == v ? e[1] : e[0]);
+        const double* q = at(f[0] == v ? f[1] : f[0]);
+        const double u[3] = {p[0] - o[0], p[1] - o[1], p[2] - o[2]}, w[3] = {q[0] - o[0], q[1] - o[1], q[2] - o[2]};
+        double n[3];
+        m3d::cross3(u, w, n);
+        smallest = std::min(smallest, std::atan2(std::sqrt(m3d::dot3(n, n)), m3d::dot3(u, w)));
+      }
+    const double sine = std::sin(smallest / 2);
+    if (sine >= 0.5) continue;
+    ratio[v] = (1 + 2 * sine) / (1 - 2 * sine);
+    for (int s : edges) base[v] = std::max(base[v], length(s));
+  }
+  std::vector<Piece> pieces;
+  for (std::size_t s = 0; s < ends.size(); ++s) {
+    const int a = ends[s][0], b = ends[s][1];
+    const double len = length(static_cast<int>(s));
+    std::vector<double> params;  // along ab, from a
+    for (int end = 0; end < 2; ++end) {
+      const int v = ends[s][end], w = ends[s][1 - end];
+      if (ratio[v] == 0) continue;
+      const double reach = ratio[w] > 0 ? len / 2 : len;  // two graded ends share the edge
+      for (double r = base[v] / ratio[v]; r >= feature_min; r /= ratio[v])
+        if (r < reach) params.push_back(end == 0 ? r / len : 1 - r / len);
+    }
+    std::sort(params.begin(), params.end());
+    int prev = a;
+    for (double t : params) {
+      const int m = static_cast<int>(xyz.size() / 3);
+      for (int k = 0; k < 3; ++k) xyz.push_back(at(a)[k] + t * (at(b)[k] - at(a)[k]));
+      point_segment.push_back(static_cast<int>(s));
+      pieces.push_back({prev, m, static_cast<int>(s)});
+      prev = m;
+    }
+    pieces.push_back({prev, b, static_cast<int>(s)});
+  }
+  return pieces;
+}
+
+// The initial triangulation with feature subsegments: each feature edge (a segment of the
+// mesh, its ends given as point ids of xyz) is graded at small angles, then split at
+// midpoints until every piece is an edge of the Delaunay triangulation of all the points;
+// refinement keeps them (rdt3d::KeepFeatures). The points added are appended to xyz, typed
+// kSegmentPoint.
+m3d::HostTetMesh triangulate_with_features(std::vector<double>& xyz, const std::vector<std::array<int, 2>>& ends,
+                                          double feature_min) {
+  const int given = static_cast<int>(xyz.size() / 3);
+  std::vector<int> midpoint_segment;  // per appended point
+  std::vector<Piece> pieces = grade_small_angles(xyz, ends, feature_min, midpoint_segment);
+  for (int round = 0;; ++round) {
+    m3d::HostTetMesh mesh = cdt3d::delaunay_tetrahedralization(xyz);
+    std::set<std::uint64_t> edges;
+    for (int t = 0; t < mesh.tets(); ++t)
+      for (int e = 0; e < 6; ++e)
+        edges.insert(edge_key(mesh.tv[4 * t + m3d::edge_corner(e, 0)], mesh.tv[4 * t + m3d::edge_corner(e, 1)]));
+    std::vector<Piece> next;
+    for (const Piece& p : pieces) {
+      if (edges.count(edge_key(p.a, p.b))) {
+        next.push_back(p);
+        continue;
+      }
+      const int m = static_cast<int>(xyz.size() / 3);
+      for (int k = 0; k < 3; ++k) xyz.push_back(0.5 * (xyz[3 * p.a + k] + xyz[3 * p.b + k]));
+      midpoint_segment.push_back(p.segment);
+      next.push_back({p.a, m, p.segment});
+      next.push_back({m, p.b, p.segment});
+      const double* q = &xyz[3 * std::size_t(m)];
+      for (int v : {p.a, p.b})
+        if (q[0] == xyz[3 * v] && q[1] == xyz[3 * v + 1] && q[2] == xyz[3 * v + 2])
+          throw Error(Status::InternalError, "a feature edge could not be recovered in the initial triangulation");
+    }
+    if (next.size() == pieces.size()) {
+      for (std::size_t k = 0; k < midpoint_segment.size(); ++k) {
+        mesh.ptype[given + k] = m3d::kSegmentPoint;
+        mesh.pseg[given + k] = midpoint_segment[k];
+      }
+      for (const auto& e : ends) mesh.seg.insert(mesh.seg.end(), {e[0], e[1]});
+      std::set<std::uint64_t> subsegments;
+      for (const Piece& p : pieces) subsegments.insert(edge_key(p.a, p.b));
+      for (int t = 0; t < mesh.tets(); ++t)
+        for (int e = 0; e < 6; ++e)
+          if (subsegments.count(edge_key(mesh.tv[4 * t + m3d::edge_corner(e, 0)], mesh.tv[4 * t + m3d::edge_corner(e, 1)])))
+            mesh.tseg[t] |= static_cast<std::uint8_t>(1 << e);
+      return mesh;
+    }
+    pieces = std::move(next);
+  }
+}
+
 }  // namespace
 
 void validate_restricted_delaunay_options(const RestrictedDelaunayOptions& o) {
@@ -90,6 +209,9 @@ void validate_restricted_delaunay_options(const RestrictedDelaunayOptions& o) {
     bad("cell radius-edge ratio must be at least 1 (or 0 to turn it off), got " +
         std::to_string(o.cell_radius_edge_ratio));
   if (o.max_steiner_points < -1) bad("maximum Steiner points must be >= 0 (or -1: automatic)");
+  if (!(o.feature_angle >= 0 && o.feature_angle < 180))
+    bad("feature angle must be in [0, 180) degrees (0: no sharp features detected), got " +
+        std::to_string(o.feature_angle));
   if (o.facet_angle == 0 && o.facet_size == 0 && o.facet_distance == 0)
     bad("at least one facet criterion (angle, size or distance) is needed");
 }
@@ -121,6 +243,12 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
   st.volume_meshed = options.mesh_volume && st.closed_input;
   if (options.mesh_volume && !st.closed_input && cb.warning)
     cb.warning("the surface is open: only the surface is meshed (a volume needs a closed surface)");
+  std::vector<std::array<int, 2>> input_segments;
+  for (const auto& g : input.segments) input_segments.push_back({plc.point_map[g[0]], plc.point_map[g[1]]});
+  const rdt3d::Features features = rdt3d::find_features(plc, input_segments, options.feature_angle);
+  st.feature_edges = static_cast<long long>(features.edges.size());
+  st.corners = features.corners;
+  st.feature_angle = options.feature_angle;
   st.input_seconds = since(t_start);
   if (aborted()) throw Error(Status::Aborted, "aborted by the caller");
 
@@ -147,15 +275,26 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
   st.cell_radius_edge_ratio = options.cell_radius_edge_ratio;
   st.cell_size = cell_size;
 
-  // Line 1: the initial Delaunay triangulation of a sample of every connected part and the
-  // box corners. The sample is random (fixed seed): points spread by index can all lie on one
-  // curve (a row of a parametric grid), whose Voronoi edges may all miss the surface (a torus
-  // sampled along its outer equator crosses each Voronoi facet in a closed loop).
+  // Line 1: the initial Delaunay triangulation of the feature vertices, a sample of every
+  // connected part and the box corners. The sample is random (fixed seed): points spread by
+  // index can all lie on one curve (a row of a parametric grid), whose Voronoi edges may all
+  // miss the surface (a torus sampled along its outer equator crosses each Voronoi facet in a
+  // closed loop).
   progress(0.02, "initial Delaunay triangulation");
   auto t0 = Clock::now();
   std::vector<double> xyz;
+  std::vector<int> mesh_id(plc.points.size(), -1);  // Plc point -> initial point
+  std::vector<char> corner;                         // per initial feature vertex
+  for (std::size_t v = 0; v < plc.points.size(); ++v)
+    if (features.kind[v] != rdt3d::kNotFeature) {
+      mesh_id[v] = static_cast<int>(xyz.size() / 3);
+      corner.push_back(features.kind[v] == rdt3d::kCorner);
+      xyz.insert(xyz.end(), {plc.points[v].x, plc.points[v].y, plc.points[v].z});
+    }
+  const int feature_vertices = static_cast<int>(xyz.size() / 3);
   std::mt19937 random(12345);
   for (auto part : components(plc)) {
+    part.erase(std::remove_if(part.begin(), part.end(), [&](int v) { return mesh_id[v] >= 0; }), part.end());
     const std::size_t n = part.size(), take = std::min<std::size_t>(n, kSamplePerPart);
     for (std::size_t k = 0; k < take; ++k) {
       std::swap(part[k], part[k + random() % (n - k)]);
@@ -167,8 +306,13 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
   st.initial_points = sample;
   for (int c = 0; c < 8; ++c)
     for (int k = 0; k < 3; ++k) xyz.push_back((c >> k) & 1 ? hi[k] + 0.5 * diag : lo[k] - 0.5 * diag);
-  m3d::HostTetMesh mesh = cdt3d::delaunay_tetrahedralization(xyz);
-  for (int v = sample; v < mesh.points(); ++v) mesh.ptype[v] = m3d::kFreePoint;  // box corners
+  std::vector<std::array<int, 2>> feature_ends;
+  for (const auto& e : features.edges) feature_ends.push_back({mesh_id[e[0]], mesh_id[e[1]]});
+  // Feature subsegments are split down to a sixteenth of the facet size; below, what cannot
+  // be met next to a feature (a small angle) is left and reported.
+  st.feature_min_length = (facet_size > 0 ? facet_size : diag / 20) / 16;
+  m3d::HostTetMesh mesh = triangulate_with_features(xyz, feature_ends, st.feature_min_length);
+  for (int v = sample; v < sample + 8; ++v) mesh.ptype[v] = m3d::kFreePoint;  // box corners
   st.initial_seconds = since(t0);
   if (aborted()) throw Error(Status::Aborted, "aborted by the caller");
 
@@ -188,6 +332,7 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
   c.cell_size2 = cell_size * cell_size;
   c.volume = st.volume_meshed ? 1 : 0;
   c.reach = 8 * diag;  // beyond the corners' box from anywhere in it
+  c.feature_min2 = st.feature_min_length * st.feature_min_length;
   params.insertion.max_steiner = options.max_steiner_points;
   if (options.max_steiner_points < 0 && st.volume_meshed && options.cell_radius_edge_ratio > 0 &&
       options.cell_radius_edge_ratio < 2)
@@ -248,6 +393,10 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
   m.ntet = out.tets();
   m.npts = static_cast<int>(out.ptype.size());
   const rdt3d::AabbView tree = surface.view();
+  // Point types as the output reports them: corners Input, the other feature vertices
+  // Segment, the sample Facet (the engine typed all of them input points).
+  for (int v = 0; v < sample; ++v)
+    out.ptype[v] = v >= feature_vertices ? m3d::kFacetPoint : (corner[v] ? m3d::kInputPoint : m3d::kSegmentPoint);
   st.triangulation_points = m.npts;
   st.triangulation_tets = m.ntet;
 
@@ -375,6 +524,16 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
     st.max_dihedral_deg = tm.tets.empty() ? 0 : max_d;
     st.max_radius_edge = max_re;
   }
+  // Feature subsegments (each edge once) and the input's feature edges, on output points.
+  std::set<std::uint64_t> seen;
+  for (int t = 0; t < m.ntet; ++t)
+    for (int e = 0; e < 6; ++e) {
+      if (!(out.tflag[t] & (m3d::kSeg0 << e))) continue;
+      const int a = m.tv[4 * t + m3d::edge_corner(e, 0)], b = m.tv[4 * t + m3d::edge_corner(e, 1)];
+      if (seen.insert(edge_key(a, b)).second) tm.subsegments.push_back({use(a), use(b)});
+    }
+  for (const auto& e : feature_ends) result.features.push_back({use(e[0]), use(e[1])});
+  for (PointType t : tm.point_type) st.feature_points += t == PointType::Input || t == PointType::Segment;
   if (options.keep_triangulation) {
     TetMesh& all = result.triangulation;
     all.points.resize(m.npts);
@@ -394,7 +553,8 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
   for (double& v : result.facet_distance) v = scale.length(v, -1);
   st.volume = scale.volume(st.volume, -1);
   st.area = scale.area(st.area, -1);
-  for (double* v : {&st.max_facet_size, &st.max_facet_distance, &st.facet_size, &st.facet_distance, &st.cell_size})
+  for (double* v : {&st.max_facet_size, &st.max_facet_distance, &st.facet_size, &st.facet_distance, &st.cell_size,
+                    &st.feature_min_length})
     *v = scale.length(*v, -1);
   st.output_points = static_cast<long long>(tm.points.size());
   st.output_tets = static_cast<long long>(tm.tets.size());

@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 #include <string>
 
 #include "cdt3d/internal.h"
 #include "gdr/validate.h"
+#include "validate/conformity.h"
 #include "validate/incidence.h"
 
 namespace gdr {
@@ -119,6 +121,35 @@ ValidationReport validate_surface(const std::vector<Point3>& points,
     q.mean_radius_edge += ratio / static_cast<double>(good.size());
   }
   r.valid = r.invalid_indices == 0 && r.inverted_elements == 0 && r.nonmanifold == 0 && r.boundary_errors == 0;
+  return r;
+}
+
+ValidationReport validate_surface_features(const std::vector<Point3>& points,
+                                           const std::vector<std::array<int, 3>>& triangles,
+                                           const std::vector<std::array<int, 2>>& subsegments,
+                                           const std::vector<std::array<int, 2>>& features,
+                                           const ValidateOptions& options) {
+  ValidationReport r;
+  validate::Problems problems{r.problems, options.max_problems};
+  const int np = static_cast<int>(points.size());
+  auto in_range = [&](const std::array<int, 2>& e) { return e[0] >= 0 && e[1] >= 0 && e[0] < np && e[1] < np; };
+  std::set<std::pair<int, int>> edges;
+  for (const auto& t : triangles)
+    for (int k = 0; k < 3; ++k) edges.insert(std::minmax(t[k], t[(k + 1) % 3]));
+  for (const auto& s : subsegments)
+    if (!in_range(s) || !edges.count(std::minmax(s[0], s[1]))) {
+      ++r.invalid_subsegments;
+      problems.add("subsegment (" + std::to_string(s[0]) + ", " + std::to_string(s[1]) + ") is not a surface edge");
+    }
+  const validate::SubsegmentGraph graph(points.size(), subsegments);
+  for (std::size_t i = 0; i < features.size(); ++i) {
+    const auto& f = features[i];
+    if (in_range(f) && validate::follow_segment(points, graph, f[0], f[1], options.segment_tolerance)) continue;
+    ++r.missing_segments;
+    problems.add("feature " + std::to_string(i) + " (" + std::to_string(f[0]) + ", " + std::to_string(f[1]) +
+                 ") is not a chain of subsegments");
+  }
+  r.valid = r.invalid_subsegments == 0 && r.missing_segments == 0;
   return r;
 }
 
