@@ -38,8 +38,8 @@ struct Criteria {
 // (m3d::kCollectBits; compaction moves them with the tetrahedron). Sharp features are
 // subsegments as in gQM3d (m3d::kSeg0 edge bits; split requests in m3d::kSplitEdge0), and
 // m3d::kProtected marks a tetrahedron whose bad facets and cell are left as they are
-// (exceptions: their splitting point lies in the diametral ball of a feature subsegment too
-// short to split).
+// (exceptions: their splitting point lies in the diametral ball of a feature subsegment that
+// may not be split, see splittable).
 enum : int {
   kRestricted0 = 1 << m3d::kCollectShift,  // bits 19-22: face i is a restricted facet
   kRestrictedBits = 15 << m3d::kCollectShift,

@@ -406,6 +406,33 @@ TEST_P(RestrictedDelaunayOnBackend, CubeKeepsItsEdgesAndCorners) {
   EXPECT_GT(std::abs(rounded.stats.volume - 1.0), 1e-3);
 }
 
+// With features, the boundary of an open surface is one: kept as a chain of surface edges,
+// the surface reaches it (without, restricted facets stop about a facet size short).
+TEST_P(RestrictedDelaunayOnBackend, OpenHemisphereKeepsItsBoundary) {
+  const Surface s = hemisphere(4);
+  RestrictedDelaunayOptions o = sizes(GetParam(), 0.15, 0.015, 0.15);
+  const RestrictedDelaunayResult plain = restricted_delaunay_3d(s, o, {});
+  o.feature_angle = 30;
+  const RestrictedDelaunayResult r = restricted_delaunay_3d(s, o, {});
+  expect_valid(r, s, false, false);
+  EXPECT_GT(r.stats.feature_edges, 0);
+  const ValidationReport f = validate_surface_features(r.mesh.points, r.mesh.subfaces, r.mesh.subsegments, r.features);
+  EXPECT_TRUE(f.valid) << f.summary();
+  const double input_area = [&] {
+    double a = 0;
+    for (const auto& t : s.triangles) {
+      const Point3 &p = s.points[t[0]], &q = s.points[t[1]], &w = s.points[t[2]];
+      const double u[3] = {q.x - p.x, q.y - p.y, q.z - p.z}, v[3] = {w.x - p.x, w.y - p.y, w.z - p.z};
+      double n[3];
+      m3d::cross3(u, v, n);
+      a += 0.5 * std::sqrt(m3d::dot3(n, n));
+    }
+    return a;
+  }();
+  EXPECT_LT(std::abs(r.stats.area - input_area), 0.01 * input_area);
+  EXPECT_LT(std::abs(r.stats.area - input_area), 0.2 * std::abs(plain.stats.area - input_area));
+}
+
 // The default (no features) and a feature angle that no edge of a smooth surface reaches
 // give the same mesh.
 TEST_P(RestrictedDelaunayOnBackend, SmoothSurfaceUnaffectedByFeatureAngle) {
