@@ -308,9 +308,9 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
     for (int k = 0; k < 3; ++k) xyz.push_back((c >> k) & 1 ? hi[k] + 0.5 * diag : lo[k] - 0.5 * diag);
   std::vector<std::array<int, 2>> feature_ends;
   for (const auto& e : features.edges) feature_ends.push_back({mesh_id[e[0]], mesh_id[e[1]]});
-  // Feature subsegments are split down to a sixteenth of the facet size; below, what cannot
+  // Feature subsegments are split down to 1/64 of the facet size; below, what cannot
   // be met next to a feature (a small angle) is left and reported.
-  st.feature_min_length = (facet_size > 0 ? facet_size : diag / 20) / 16;
+  st.feature_min_length = (facet_size > 0 ? facet_size : diag / 20) / 64;
   m3d::HostTetMesh mesh = triangulate_with_features(xyz, feature_ends, st.feature_min_length);
   for (int v = sample; v < sample + 8; ++v) mesh.ptype[v] = m3d::kFreePoint;  // box corners
   st.initial_seconds = since(t0);
