@@ -15,6 +15,7 @@
 #include "gdr/validate.h"
 #include "mesh3d/mesh3d.h"
 #include "rdt3d/aabb.h"
+#include "rdt3d/circumcentre.h"
 
 namespace gdr {
 namespace {
@@ -174,6 +175,22 @@ TEST(Aabb, InsideSurfaceByParity) {
   EXPECT_TRUE(rdt3d::segment_meets_surface(view, p, q));
   const double r[3] = {0.2, 0.1, -0.2};
   EXPECT_FALSE(rdt3d::segment_meets_surface(view, r, centre));
+}
+
+// A nearly flat tetrahedron of four nearly cocircular points (met on a cube's faces: a
+// rounded surface centre): its circumcentre is equidistant from its corners, where plain
+// double arithmetic is off by far more than the corners' spacing.
+TEST(Circumcentre, AccurateOnNearlyFlatTetrahedra) {
+  const double a[3] = {0.49999999999999994, 1, 0.49999999999999994}, b[3] = {0.25, 1, 1}, c[3] = {0, 0.5, 0.5},
+               d[3] = {0, 0.75, 1};
+  double o[3], plain[3];
+  ASSERT_TRUE(rdt3d::accurate_tet_circumcenter(a, b, c, d, o));
+  auto spread = [&](const double* x) {  // largest difference of the squared distances to the corners
+    const double da = m3d::dist2(x, a), db = m3d::dist2(x, b), dc = m3d::dist2(x, c), dd = m3d::dist2(x, d);
+    return (std::max({da, db, dc, dd}) - std::min({da, db, dc, dd})) / da;
+  };
+  EXPECT_LT(spread(o), 1e-6);
+  if (m3d::tet_circumcenter(a, b, c, d, plain)) EXPECT_GT(spread(plain), 1e-3);
 }
 
 RestrictedDelaunayOptions sizes(Backend backend, double facet_size, double facet_distance, double cell_size) {

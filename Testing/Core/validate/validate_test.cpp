@@ -299,4 +299,28 @@ TEST(ValidateTetMesh, MissingPoint) {
   EXPECT_EQ(validate_tetmesh(m, &s).missing_points, 1u);
 }
 
+// Sharp features of a surface (gdr rdt): the bottom edge (0, 2) of a square, split at point
+// 1, as a chain of subsegments that are surface edges.
+TEST(ValidateSurfaceFeatures, ChainOfSurfaceEdges) {
+  std::vector<Point3> p = {{0, 0, 0}, {0.5, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  const std::vector<std::array<int, 3>> tri = {{0, 1, 4}, {1, 2, 3}, {1, 3, 4}};
+  const std::vector<std::array<int, 2>> feature = {{0, 2}};
+  std::vector<std::array<int, 2>> sub = {{0, 1}, {1, 2}};
+  EXPECT_TRUE(validate_surface_features(p, tri, sub, feature).valid);
+  sub.pop_back();  // a gap in the chain
+  ValidationReport r = validate_surface_features(p, tri, sub, feature);
+  EXPECT_EQ(r.missing_segments, 1u);
+  EXPECT_FALSE(r.valid);
+  sub = {{0, 1}, {1, 2}, {0, 3}};  // (0, 3) is no surface edge
+  r = validate_surface_features(p, tri, sub, feature);
+  EXPECT_EQ(r.invalid_subsegments, 1u);
+  EXPECT_EQ(r.missing_segments, 0u);
+  EXPECT_FALSE(r.valid);
+  sub = {{0, 1}, {1, 2}};
+  p[1].y = 0.1;  // the chain leaves the feature
+  r = validate_surface_features(p, tri, sub, feature);
+  EXPECT_EQ(r.missing_segments, 1u);
+  EXPECT_FALSE(r.valid);
+}
+
 }  // namespace
