@@ -445,6 +445,9 @@ void vtkGDRConversion::AddStats(const gdr::RestrictedDelaunayStats& stats, vtkFi
   AddValue<vtkIntArray>(fd, "ClosedInput", stats.closed_input ? 1 : 0);
   AddValue<vtkIntArray>(fd, "VolumeMeshed", stats.volume_meshed ? 1 : 0);
   AddValue<vtkIdTypeArray>(fd, "InitialPoints", static_cast<vtkIdType>(stats.initial_points));
+  AddValue<vtkIdTypeArray>(fd, "FeatureEdges", static_cast<vtkIdType>(stats.feature_edges));
+  AddValue<vtkIdTypeArray>(fd, "Corners", static_cast<vtkIdType>(stats.corners));
+  AddValue<vtkIdTypeArray>(fd, "FeaturePoints", static_cast<vtkIdType>(stats.feature_points));
   AddValue<vtkIdTypeArray>(fd, "BadFacets", static_cast<vtkIdType>(stats.bad_facets));
   AddValue<vtkIdTypeArray>(fd, "BadTetrahedra", static_cast<vtkIdType>(stats.bad_tets));
   AddValue<vtkDoubleArray>(fd, "FacetAngle", stats.facet_angle);
@@ -452,6 +455,7 @@ void vtkGDRConversion::AddStats(const gdr::RestrictedDelaunayStats& stats, vtkFi
   AddValue<vtkDoubleArray>(fd, "FacetDistance", stats.facet_distance);
   AddValue<vtkDoubleArray>(fd, "CellRadiusEdgeRatio", stats.cell_radius_edge_ratio);
   AddValue<vtkDoubleArray>(fd, "CellSize", stats.cell_size);
+  AddValue<vtkDoubleArray>(fd, "FeatureAngle", stats.feature_angle);
   AddValue<vtkDoubleArray>(fd, "MinimumFacetAngleReached", stats.min_facet_angle_deg);
   AddValue<vtkDoubleArray>(fd, "MaximumFacetSizeReached", stats.max_facet_size);
   AddValue<vtkDoubleArray>(fd, "MaximumFacetDistanceReached", stats.max_facet_distance);

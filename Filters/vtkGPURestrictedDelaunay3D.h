@@ -10,6 +10,7 @@
  * approximated, not kept: output surface vertices lie on it (up to rounding), output surface
  * triangles are the Delaunay faces whose Voronoi dual meets it, and tetrahedra are those
  * whose circumcentre lies inside it. Scanned, noisy or badly shaped surfaces are fine.
+ * With FeatureAngle, sharp edges and corners of the input are kept.
  *
  * Input (port 0): a vtkPolyData surface. Every polygon (and triangle strip) is used;
  * polygons with more than three corners are triangulated. Lines and vertices are ignored.
@@ -20,14 +21,15 @@
  *
  * Output (port 0, vtkUnstructuredGrid): the tetrahedra (empty when only the surface is
  * meshed). Cell data: RadiusEdgeRatio (circumradius over shortest edge), MinDihedralAngle
- * and MaxDihedralAngle (degrees), Volume, IsBad (1 above the cell criteria). Point data:
- * PointType (0 input point, 3 inserted on the surface, 2 inside). MinDihedralAngle is the
- * active scalar, as in vtkGPUQualityTetMesh. Field data, also when the tetrahedra are
- * empty: the run's statistics (Backend, DeviceName, Iterations, SteinerPoints,
- * ClosedInput, VolumeMeshed, BadFacets, BadTetrahedra, Stalled, SteinerCapReached, the
- * criteria in effect with automatic sizes resolved as FacetAngle, FacetSize,
- * FacetDistance, CellRadiusEdgeRatio, CellSize, the qualities reached, Area, Volume, the
- * times and the per-phase times as PhaseNames / PhaseSeconds).
+ * and MaxDihedralAngle (degrees), Volume, IsBad (1 above the criteria, left next to sharp
+ * features or by a cap or a stall). Point data: PointType (0 a corner, 1 on a feature edge,
+ * 3 on the surface, 2 inside). MinDihedralAngle is the active scalar, as in
+ * vtkGPUQualityTetMesh. Field data, also when the tetrahedra are empty: the run's
+ * statistics (Backend, DeviceName, Iterations, SteinerPoints, ClosedInput, VolumeMeshed,
+ * FeatureEdges, Corners, FeaturePoints, BadFacets, BadTetrahedra, Stalled,
+ * SteinerCapReached, the criteria in effect with automatic sizes resolved as FacetAngle,
+ * FacetSize, FacetDistance, CellRadiusEdgeRatio, CellSize, FeatureAngle, the qualities
+ * reached, Area, Volume, the times and the per-phase times as PhaseNames / PhaseSeconds).
  * Output (port 1, vtkPolyData): the restricted surface, triangles (outward for a closed
  * input) sharing the points of port 0 when it has tetrahedra. Cell data: MinAngle
  * (degrees, the active scalar), Size (radius of the surface Delaunay ball), Distance
@@ -41,8 +43,8 @@
  * Sizes are lengths in input units. A negative size asks for the automatic default,
  * relative to the diagonal D of the input's bounding box; 0 turns that criterion off.
  * Values the engine cannot honour (FacetAngle outside [0, 30], CellRadiusEdgeRatio in
- * (0, 1) or negative, all three facet criteria off, non-finite sizes, MaximumSteinerPoints
- * below -1) are not clamped: the run is refused with an InvalidInput error, as gdr rdt
+ * (0, 1) or negative, all three facet criteria off, non-finite sizes, FeatureAngle outside
+ * [0, 180), MaximumSteinerPoints below -1) are not clamped: the run is refused with an InvalidInput error, as gdr rdt
  * refuses them. Errors leave empty outputs; so does an aborted run.
  */
 
@@ -126,6 +128,17 @@ public:
 
   ///@{
   /**
+   * Sharp features, in degrees in [0, 180): input edges whose two triangles' normals differ
+   * by more than this (and, for an open surface, its boundary edges) are kept as chains of
+   * surface edges, and the corners where they meet as vertices, as CGAL Mesh_3 keeps
+   * protected features. Default 0: none detected (sharp edges come out rounded).
+   */
+  vtkSetMacro(FeatureAngle, double);
+  vtkGetMacro(FeatureAngle, double);
+  ///@}
+
+  ///@{
+  /**
    * Cap on the number of inserted points; refinement stops cleanly when it is reached and
    * IsBad marks what is left above the criteria. -1 (default): an automatic cap, only
    * where termination is not guaranteed (CellRadiusEdgeRatio below 2).
@@ -160,6 +173,7 @@ protected:
   double CellRadiusEdgeRatio = 2.0;
   double CellSize = -1.0;
   vtkTypeBool MeshVolume = 1;
+  double FeatureAngle = 0.0;
   vtkIdType MaximumSteinerPoints = -1;
   int Backend = AUTO;
 

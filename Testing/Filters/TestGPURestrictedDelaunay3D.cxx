@@ -326,7 +326,7 @@ double CheckTetrahedra(vtkGPURestrictedDelaunay3D* filter)
     CHECK(ratio->GetComponent(t, 0) <= filter->GetCellRadiusEdgeRatio() * (1 + 1e-6));
   }
   CHECK(Sum(bad) == 0 && FieldValue(out, "BadTetrahedra") == 0);
-  // 0 input point, 3 inserted on the surface, 2 inside; the surface has no free points.
+  // 0 corner, 1 on a feature edge, 3 on the surface, 2 inside; the surface has no free points.
   CHECK(type->GetRange()[0] >= 0 && type->GetRange()[1] <= 3);
   vtkPolyData* surface = SurfaceOutput(filter);
   CHECK(surface->GetPoints() == out->GetPoints());
@@ -476,6 +476,87 @@ void TestPolygons()
   CHECK(std::fabs(volume - 4 * M_PI / 3) <= 0.05 * 4 * M_PI / 3);
 }
 
+void TestFeatures()
+{
+  // A unit cube of quadrilaterals, turned off the axes (rotated about z by a, then about x by
+  // b) so that the points on its faces are rounded constructions, as on any CAD part: with
+  // FeatureAngle its 12 edges and 8 corners are kept and the volume is the cube's; without,
+  // the edges come out rounded.
+  const double ca = std::cos(0.3), sa = std::sin(0.3), cb = std::cos(0.7), sb = std::sin(0.7);
+  const double turn[3][3] = { { ca, -sa, 0 }, { cb * sa, cb * ca, -sb }, { sb * sa, sb * ca, cb } };
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  for (int k = 0; k < 8; ++k)
+  {
+    const double c[3] = { double(k & 1), double((k >> 1) & 1), double((k >> 2) & 1) };
+    double p[3];
+    for (int i = 0; i < 3; ++i)
+    {
+      p[i] = turn[i][0] * c[0] + turn[i][1] * c[1] + turn[i][2] * c[2];
+    }
+    points->InsertNextPoint(p);
+  }
+  vtkNew<vtkCellArray> faces;
+  const vtkIdType sides[6][4] = { { 0, 2, 3, 1 }, { 4, 5, 7, 6 }, { 0, 1, 5, 4 }, { 2, 6, 7, 3 },
+    { 0, 4, 6, 2 }, { 1, 3, 7, 5 } };
+  for (const auto& side : sides)
+  {
+    faces->InsertNextCell(4, side);
+  }
+  vtkNew<vtkPolyData> cube;
+  cube->SetPoints(points);
+  cube->SetPolys(faces);
+  CHECK(std::fabs(EnclosedVolume(cube) - 1) < 1e-12);
+  // Distances of a point to the cube's faces, in the cube's own axes (turned back).
+  auto onFaces = [&](const double p[3])
+  {
+    int on = 0;
+    for (int j = 0; j < 3; ++j)
+    {
+      const double c = turn[0][j] * p[0] + turn[1][j] * p[1] + turn[2][j] * p[2];
+      on += (std::fabs(c) < 1e-12 || std::fabs(c - 1) < 1e-12) ? 1 : 0;
+    }
+    return on;
+  };
+
+  vtkNew<vtkGPURestrictedDelaunay3D> filter;
+  EventLog log;
+  log.Watch(filter);
+  filter->SetInputData(cube);
+  filter->SetBackendToCPU();
+  filter->SetFacetSize(0.3);
+  filter->SetFeatureAngle(30);
+  filter->Update();
+  CHECK(log.Errors.empty());
+  CheckSurface(filter, true);
+  const double volume = CheckTetrahedra(filter);
+  CHECK(std::fabs(volume - 1) < 1e-9);
+  vtkUnstructuredGrid* out = filter->GetOutput();
+  CHECK(FieldValue(out, "FeatureEdges") == 12 && FieldValue(out, "Corners") == 8);
+  CHECK(FieldValue(out, "FeatureAngle") == 30);
+  // PointType: the corners (0) are the cube's, the feature points (1) lie on its edges.
+  vtkDataArray* type = out->GetPointData()->GetArray("PointType");
+  int corners = 0;
+  for (vtkIdType i = 0; type && i < out->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    out->GetPoint(i, p);
+    const double t = type->GetComponent(i, 0);
+    corners += t == 0 ? 1 : 0;
+    CHECK(t != 0 || onFaces(p) == 3);
+    CHECK(t != 1 || onFaces(p) == 2);
+  }
+  CHECK(corners == 8);
+
+  filter->SetFeatureAngle(0);
+  filter->Update();
+  CHECK(log.Errors.empty());
+  CHECK(FieldValue(filter->GetOutput(), "FeatureEdges") == 0);
+  const double rounded = Sum(filter->GetOutput()->GetCellData()->GetArray("Volume"));
+  // 0.06% short here: the 8 corners, all in the initial sample, stay; the edges do not.
+  CHECK(rounded > 0.99 && rounded < 1 - 1e-4);
+}
+
 void TestOutOfRange()
 {
   vtkNew<vtkGPURestrictedDelaunay3D> filter;
@@ -483,6 +564,7 @@ void TestOutOfRange()
     filter->GetFacetDistance() == -1);
   CHECK(filter->GetCellRadiusEdgeRatio() == 2 && filter->GetCellSize() == -1);
   CHECK(filter->GetMeshVolume() == 1 && filter->GetMaximumSteinerPoints() == -1);
+  CHECK(filter->GetFeatureAngle() == 0);
   CHECK(filter->GetBackend() == vtkGPURestrictedDelaunay3D::AUTO);
   filter->SetBackend(9);
   CHECK(filter->GetBackend() == vtkGPURestrictedDelaunay3D::CPU);
@@ -505,6 +587,7 @@ void TestOutOfRange()
     { [&] { filter->SetCellRadiusEdgeRatio(0.5); }, "cell radius-edge ratio must be at least 1" },
     { [&] { filter->SetCellRadiusEdgeRatio(-2); }, "cell radius-edge ratio must be at least 1" },
     { [&] { filter->SetMaximumSteinerPoints(-7); }, "maximum Steiner points" },
+    { [&] { filter->SetFeatureAngle(180); }, "feature angle must be in [0, 180)" },
     { [&] { filter->SetCellSize(std::numeric_limits<double>::quiet_NaN()); }, "must be finite" },
     { [&]
       {
@@ -522,6 +605,7 @@ void TestOutOfRange()
     filter->SetCellRadiusEdgeRatio(2);
     filter->SetCellSize(-1);
     filter->SetMaximumSteinerPoints(-1);
+    filter->SetFeatureAngle(0);
     c.first();
     log.Clear();
     filter->Update();
@@ -659,6 +743,7 @@ int main(int argc, char* argv[])
     { "OpenSurface", TestOpenSurface },
     { "SurfaceOnly", TestSurfaceOnly },
     { "Polygons", TestPolygons },
+    { "Features", TestFeatures },
     { "OutOfRange", TestOutOfRange },
     { "EmptyInput", TestEmptyInput },
     { "SelfIntersecting", TestSelfIntersecting },

@@ -20,8 +20,9 @@ from paraview import servermanager
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from plugin_test_support import check, check_documented, parse_args  # noqa: E402
 
-PROPERTIES = ("Input", "FacetAngle", "FacetSize", "FacetDistance", "CellRadiusEdgeRatio",
-              "CellSize", "MeshVolume", "MaximumSteinerPoints", "Backend")
+PROPERTIES = ("Input", "FacetAngle", "FacetSize", "FacetDistance", "FeatureAngle",
+              "CellRadiusEdgeRatio", "CellSize", "MeshVolume", "MaximumSteinerPoints",
+              "Backend")
 
 
 def check_proxy(mesh):
@@ -30,6 +31,7 @@ def check_proxy(mesh):
     check(mesh.FacetSize == -1 and mesh.FacetDistance == -1 and mesh.CellSize == -1,
           "automatic sizes by default")
     check(mesh.MeshVolume == 1 and mesh.MaximumSteinerPoints == -1, "MeshVolume, cap defaults")
+    check(mesh.FeatureAngle == 0, "no features by default")
     check(mesh.Backend == "Auto", "Backend default")
     check_documented(mesh, PROPERTIES)
     angle = mesh.GetProperty("FacetAngle").SMProperty.GetDomain("range")
