@@ -470,6 +470,24 @@ TEST_P(RestrictedDelaunayOnBackend, OpenHemisphereKeepsItsBoundary) {
   EXPECT_LT(std::abs(r.stats.area - input_area), 0.2 * std::abs(plain.stats.area - input_area));
 }
 
+// The input's segments are features without a feature angle: the top square of a cube,
+// given as four segments, is kept (its corners too); the other edges are not features.
+TEST_P(RestrictedDelaunayOnBackend, InputSegmentsAreFeatures) {
+  const Rotation rot = turn(0.3, 0.7);
+  Surface s = test::unit_cube();
+  for (Point3& p : s.points) p = rot.apply(p);
+  s.segments = {{4, 5}, {5, 7}, {7, 6}, {6, 4}};  // z = 1 (test::add_box numbers corners by bits)
+  const RestrictedDelaunayResult r = restricted_delaunay_3d(s, sizes(GetParam(), 0.2, 0.02, 0.2), {});
+  expect_valid(r, s, true, true);
+  EXPECT_EQ(r.stats.feature_edges, 4);
+  EXPECT_EQ(r.stats.corners, 4);
+  ASSERT_EQ(r.features.size(), 4u);
+  const ValidationReport f = validate_surface_features(r.mesh.points, r.mesh.subfaces, r.mesh.subsegments, r.features);
+  EXPECT_TRUE(f.valid) << f.summary();
+  for (const auto& e : r.features)
+    for (int v : e) EXPECT_NEAR(rot.undo(r.mesh.points[v]).z, 1.0, 1e-12);
+}
+
 // The default (no features) and a feature angle that no edge of a smooth surface reaches
 // give the same mesh.
 TEST_P(RestrictedDelaunayOnBackend, SmoothSurfaceUnaffectedByFeatureAngle) {
