@@ -58,6 +58,10 @@ Quality and size:
   --min-dihedral DEG      smallest dihedral angle allowed (TetGen's -q B/DEG; default off,
                           at most 60)
   --max-volume V          largest tetrahedron volume (TetGen's -a V; default: no limit)
+  --sliver-angle DEG      after refinement, move interior Steiner points to raise dihedral
+                          angles below DEG (and above 180 - DEG) as TetGen's -O smoothing
+                          does, keeping --radius-edge (default off; at most 30; the mesh is
+                          then not Delaunay where points moved, and --check skips that test)
   --max-steiner N         stop cleanly after inserting N Steiner points (default: no cap
                           for B >= 2 without --min-dihedral, where refinement terminates;
                           otherwise an automatic cap, reported in the summary)
@@ -116,6 +120,7 @@ ArgsTet parse_tet(const std::vector<std::string>& args) {
       number("radius-edge", a.options.radius_edge_ratio),
       number("min-dihedral", a.options.min_dihedral_angle),
       number("max-volume", a.options.max_volume),
+      number("sliver-angle", a.options.sliver_angle),
       {"max-steiner", 0, true,
        [&](const std::string& v) {
          a.options.max_steiner_points = parse_integer(cmd, "max-steiner", v);
@@ -210,6 +215,11 @@ void print_summary(const ArgsTet& a, const Surface& input, const QualityTetResul
   info.row({"dihedral angles", "min " + fixed(s.min_dihedral_deg, 2) + " deg (" +
                                    bound(o.min_dihedral_angle, " deg") + "), max " +
                                    fixed(s.max_dihedral_deg, 2) + " deg"});
+  if (o.sliver_angle > 0)
+    info.row({"slivers", with_commas(s.slivers_before) + " tetrahedra with an angle below " +
+                             fixed(o.sliver_angle, 1) + " deg (or above " + fixed(180 - o.sliver_angle, 1) +
+                             ") before smoothing, " + with_commas(s.slivers_after) + " after (" +
+                             with_commas(s.sliver_moves) + " moves)"});
   info.row({"radius-edge ratio", "max " + ratio(s.max_radius_edge) + " (" +
                                      bound(o.radius_edge_ratio, "") + ")"});
   info.row({"bad tetrahedra", with_commas(s.bad_tets) + ", " + fixed(s.bad_volume_percent, 4) +
@@ -262,6 +272,7 @@ void write_stats_json(const std::string& path, const ArgsTet& a, const QualityTe
   j.field("radius_edge_ratio", o.radius_edge_ratio);
   j.field("min_dihedral_angle", o.min_dihedral_angle);
   j.field("max_volume", o.max_volume);
+  j.field("sliver_angle", o.sliver_angle);
   j.field("max_steiner_points", o.max_steiner_points);
   j.field("refine", o.refine);
   j.field("backend", to_string(o.backend));
@@ -292,6 +303,9 @@ void write_stats_json(const std::string& path, const ArgsTet& a, const QualityTe
   j.field("stalled", s.stalled);
   j.field("min_dihedral_deg", s.min_dihedral_deg);
   j.field("max_dihedral_deg", s.max_dihedral_deg);
+  j.field("slivers_before", s.slivers_before);
+  j.field("slivers_after", s.slivers_after);
+  j.field("sliver_moves", s.sliver_moves);
   j.field("max_radius_edge", s.max_radius_edge);
   j.field("volume", s.volume);
   j.field("input_volume", s.input_volume);
@@ -420,6 +434,7 @@ int mesh_tet(const ArgsTet& a, bool& written) {
     t0 = std::chrono::steady_clock::now();
     ValidateOptions vo;
     vo.max_radius_edge = a.options.radius_edge_ratio;
+    vo.check_delaunay = a.options.sliver_angle == 0;  // smoothing moves points off Delaunay
     report = validate_tetmesh(result.mesh, &input, vo);
     t.check = since(t0);
     stop_if_interrupted();

@@ -24,6 +24,11 @@ struct QualityTetOptions {
   // only where termination is not guaranteed (radius-edge below 2 or a dihedral bound).
   long long max_steiner_points = -1;
   bool refine = true;      // false: only the constrained Delaunay tetrahedralization
+  // Sliver removal after refinement (TetGen's -O, by vertex smoothing only): interior
+  // Steiner points of tetrahedra with a dihedral angle below this many degrees (or above
+  // 180 minus it) move to raise the smallest dihedral angle around them, keeping the
+  // radius-edge bound. The mesh is then no longer Delaunay where points moved. 0: off.
+  double sliver_angle = 0.0;
   Backend backend = Backend::Auto;
   std::size_t gpu_min_tets = 0;  // Auto uses the GPU from this estimated size; 0: measured default
 };
@@ -52,6 +57,9 @@ struct QualityTetStats {
   bool stalled = false;                 // bad elements remain that could not be split
   double min_dihedral_deg = 0, max_dihedral_deg = 0;
   double max_radius_edge = 0;
+  // Sliver removal (sliver_angle > 0): tetrahedra with an angle beyond it before and after,
+  // and the points moved.
+  long long slivers_before = 0, slivers_after = 0, sliver_moves = 0;
   double volume = 0;                    // of the output
   double input_volume = 0;              // enclosed by the input surface
   double input_seconds = 0, cdt_seconds = 0, refine_seconds = 0, output_seconds = 0;

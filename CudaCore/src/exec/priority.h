@@ -7,6 +7,7 @@
 // priority through `prio_of(item)`. Ties (equal priorities) are broken by item number, so
 // every mark ends with the single highest item of its competitors.
 #pragma once
+#include <cmath>
 #include <cstring>
 
 #include "exec/hd.h"
@@ -23,6 +24,25 @@ GDR_HD_INLINE unsigned size_key(float size) {
   std::memcpy(&bits, &size, sizeof bits);
 #endif
   return bits >> 1;  // sign bit is 0: drop one mantissa bit, keep order
+}
+
+// The size key of a priority: sizes rounded down to a power of two, so that elements of
+// about the same size rank by their (shuffled) ids.
+GDR_HD_INLINE float size_class(double size) {
+  if (!(size > 0) || !(size < 1e38)) return size > 0 ? 1e38f : 0.0f;
+  return static_cast<float>(exp2(floor(log2(size))));
+}
+
+// A bijection of 32 bits that looks random: ids shuffled by a salt per iteration give
+// pseudo-random order among equals.
+GDR_HD_INLINE unsigned shuffle_id(unsigned x, unsigned salt) {
+  x ^= salt;
+  x ^= x >> 16;
+  x *= 0x7feb352du;
+  x ^= x >> 15;
+  x *= 0x846ca68bu;
+  x ^= x >> 16;
+  return x;
 }
 
 GDR_HD_INLINE u64 make_priority(unsigned klass, float size, unsigned id) {

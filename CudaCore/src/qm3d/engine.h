@@ -15,6 +15,7 @@
 #include "mesh3d/cavity.h"
 #include "mesh3d/compact.h"
 #include "mesh3d/mesh3d.h"
+#include "mesh3d/smooth.h"
 #include "mesh3d/stall.h"
 #include "qm3d/kernels.h"
 
@@ -40,6 +41,9 @@ struct EngineParams {
   // Check every subsegment and subface of the input mesh for encroachment (kernels.h,
   // static_collect_mask); off when refining a mesh that is already refined.
   bool check_input_boundary = true;
+  // Sliver removal after refinement (mesh3d/smooth.h): stars with a dihedral angle whose
+  // sine is below this are smoothed; 0: none.
+  double sliver_sin = 0;
 };
 
 struct EngineResult {
@@ -47,6 +51,7 @@ struct EngineResult {
   long long inserted = 0;
   bool cap_reached = false;
   bool stalled = false;
+  m3d::SmoothResult slivers;
   std::size_t peak_bytes = 0;
   std::vector<PhaseTime> phases;
 };
@@ -180,6 +185,11 @@ struct Engine {
         m3d::check_host_mesh(dm.to_host(host.input_points));
       }
       if (res.cap_reached) break;
+    }
+    if (params.sliver_sin > 0) {
+      clock.restart();
+      res.slivers = m3d::smooth_slivers(dm, m3d::SmoothParams{params.sliver_sin}, MeetsCriteria{params.criteria});
+      clock.template stop<Space>("slivers");
     }
     download(out);
     res.peak_bytes = exec::memory_counter<Space>().peak - mem_base;

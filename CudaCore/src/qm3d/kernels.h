@@ -41,13 +41,8 @@ struct TetShape {
   bool ok = false;    // circumcentre computable
 };
 
-GDR_HD_INLINE TetShape tet_shape(const TetView& m, int t) {
+GDR_HD_INLINE TetShape tet_shape_of(const double* a, const double* b, const double* c, const double* d) {
   TetShape s;
-  const int* v = m.tv + 4 * t;
-  const double* a = pt(m, v[0]);
-  const double* b = pt(m, v[1]);
-  const double* c = pt(m, v[2]);
-  const double* d = pt(m, v[3]);
   s.lmin2 = fmin(fmin(m3d::dist2(a, b), m3d::dist2(a, c)),
                  fmin(fmin(m3d::dist2(a, d), m3d::dist2(b, c)), fmin(m3d::dist2(b, d), m3d::dist2(c, d))));
   const double ab[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
@@ -61,15 +56,19 @@ GDR_HD_INLINE TetShape tet_shape(const TetView& m, int t) {
   return s;
 }
 
+GDR_HD_INLINE TetShape tet_shape(const TetView& m, int t) {
+  const int* v = m.tv + 4 * t;
+  return tet_shape_of(pt(m, v[0]), pt(m, v[1]), pt(m, v[2]), pt(m, v[3]));
+}
+
 // Is any dihedral angle of t smaller than the bound? The dihedral angle at an edge has
 // cosine -n1.n2 / (|n1| |n2|) for the outward normals n1, n2 of the two faces there.
-GDR_HD_INLINE bool small_dihedral(const TetView& m, int t, double cos_bound) {
-  const int* v = m.tv + 4 * t;
+GDR_HD_INLINE bool small_dihedral_of(const double* const p[4], double cos_bound) {
   double n[4][3], len[4];
   for (int f = 0; f < 4; ++f) {
-    const double* a = pt(m, v[m3d::face_corner(f, 0)]);
-    const double* b = pt(m, v[m3d::face_corner(f, 1)]);
-    const double* c = pt(m, v[m3d::face_corner(f, 2)]);
+    const double* a = p[m3d::face_corner(f, 0)];
+    const double* b = p[m3d::face_corner(f, 1)];
+    const double* c = p[m3d::face_corner(f, 2)];
     const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
     const double w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
     m3d::cross3(u, w, n[f]);
@@ -85,16 +84,33 @@ GDR_HD_INLINE bool small_dihedral(const TetView& m, int t, double cos_bound) {
   return false;
 }
 
-GDR_HD_INLINE int classify_tet(const TetView& m, int t, const Criteria& c, const TetShape& s) {
+// Tetrahedron t with its corners at p (its own, or where a vertex would move to).
+GDR_HD_INLINE int classify_corners(const TetView& m, int t, const Criteria& c, const TetShape& s,
+                                   const double* const p[4]) {
   double v6 = c.max_volume6;
   if (c.region_bounds && m.tregion)
     for (int k = 0; k < c.region_bounds; ++k)
       if (c.region_attribute[k] == m.tregion[t]) v6 = v6 > 0 ? fmin(v6, c.region_volume6[k]) : c.region_volume6[k];
   if (v6 > 0 && s.volume6 > v6) return kTooBig;
   if (c.max_radius_edge2 > 0 && s.r2 > c.max_radius_edge2 * s.lmin2) return kBad;
-  if (c.dihedral && small_dihedral(m, t, c.cos_min_dihedral)) return kBad;
+  if (c.dihedral && small_dihedral_of(p, c.cos_min_dihedral)) return kBad;
   return kGood;
 }
+
+GDR_HD_INLINE int classify_tet(const TetView& m, int t, const Criteria& c, const TetShape& s) {
+  const int* v = m.tv + 4 * t;
+  const double* p[4] = {pt(m, v[0]), pt(m, v[1]), pt(m, v[2]), pt(m, v[3])};
+  return classify_corners(m, t, c, s, p);
+}
+
+// Sliver smoothing keeps every tetrahedron that meets the criteria meeting them
+// (mesh3d/smooth.h).
+struct MeetsCriteria {
+  Criteria c;
+  GDR_HD bool operator()(const TetView& m, int t, const double* const p[4]) const {
+    return classify_corners(m, t, c, tet_shape_of(p[0], p[1], p[2], p[3]), p) == kGood;
+  }
+};
 
 // ---------------------------------------------------------------------------------------
 // Collect (Algorithm 3 line 4, S4): an 11-bit mask per tetrahedron: bit 0 the tetrahedron
@@ -203,20 +219,8 @@ struct ExpandElements {
 // bound larger first, then those bad by shape alone worst first by radius-edge ratio.
 enum : unsigned { kClassShape = 0, kClassTooBig = 1, kClassSubface = 2, kClassSegment = 3 };
 
-GDR_HD_INLINE float size_class(double size) {
-  if (!(size > 0) || !(size < 1e38)) return size > 0 ? 1e38f : 0.0f;
-  return static_cast<float>(exp2(floor(log2(size))));
-}
-
-GDR_HD_INLINE unsigned shuffle_id(unsigned x, unsigned salt) {  // a bijection of 32 bits
-  x ^= salt;
-  x ^= x >> 16;
-  x *= 0x7feb352du;
-  x ^= x >> 15;
-  x *= 0x846ca68bu;
-  x ^= x >> 16;
-  return x;
-}
+using exec::shuffle_id;
+using exec::size_class;
 
 // The least tetrahedron around edge xy of t (so that every tetrahedron reporting a
 // subsegment names the same one).

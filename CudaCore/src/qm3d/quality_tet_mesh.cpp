@@ -122,6 +122,8 @@ void validate_quality_tet_input(const Surface& input, const QualityTetOptions& o
         std::to_string(o.radius_edge_ratio));
   if (!(o.min_dihedral_angle >= 0 && o.min_dihedral_angle <= 60))
     bad("minimum dihedral angle must be in [0, 60] degrees, got " + std::to_string(o.min_dihedral_angle));
+  if (!(o.sliver_angle >= 0 && o.sliver_angle <= 30))
+    bad("sliver angle must be in [0, 30] degrees, got " + std::to_string(o.sliver_angle));
   if (!(o.max_volume >= 0 && std::isfinite(o.max_volume)))
     bad("maximum volume must be >= 0 and finite, got " + std::to_string(o.max_volume));
   if (o.max_steiner_points < -1) bad("maximum Steiner points must be >= 0 (or -1: automatic)");
@@ -174,6 +176,7 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
   st.automatic_steiner_cap = options.max_steiner_points < 0 && params.max_steiner >= 0;
   params.strategies = strategies_from_environment();
   if (!options.refine) params.max_iterations = 0;
+  params.sliver_sin = options.refine ? std::sin(options.sliver_angle * kPi / 180.0) : 0.0;
   params.check_links = std::getenv("GDR_CHECK_LINKS") != nullptr;  // debugging: slow, checks every link each iteration
   Callbacks engine_cb = cb;
   if (cb.progress)  // iterations have no known total: report a slowly saturating fraction
@@ -202,6 +205,9 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
     st.steiner_cap_reached = er.cap_reached;
     st.stalled = er.stalled;
     st.phases = er.phases;
+    st.slivers_before = er.slivers.slivers_before;
+    st.slivers_after = er.slivers.slivers_after;
+    st.sliver_moves = er.slivers.moves;
     if (st.backend_used == Backend::Gpu) st.peak_device_bytes = er.peak_bytes;
     if (er.cap_reached && cb.warning)
       cb.warning(st.automatic_steiner_cap
