@@ -1,6 +1,6 @@
 /**
  * @class   vtkGPUConstrainedDelaunay2D
- * @brief   quality 2D constrained (Ruppert) or conforming (Chew) Delaunay refinement
+ * @brief   quality 2D constrained Delaunay refinement with Triangle's rules
  *
  * vtkGPUConstrainedDelaunay2D meshes a planar straight-line graph (PSLG) given in the
  * z = constant plane with the gDP2d refinement algorithm of Chen & Tan, "Delaunay Mesh
@@ -102,7 +102,9 @@ public:
 
   ///@{
   /**
-   * Encroachment mode: RUPPERT (constrained Delaunay, default) or CHEW.
+   * Encroachment mode: CHEW (default, as Triangle: a point encroaches a subsegment inside
+   * its diametral lens of angle 180 - 2 MinimumAngle) or RUPPERT (inside its diametral
+   * circle, as Triangle's -D: more Steiner points).
    */
   vtkSetClampMacro(Mode, int, RUPPERT, CHEW);
   vtkGetMacro(Mode, int);
@@ -113,7 +115,7 @@ public:
   ///@{
   /**
    * Insert Ungor's off-centres instead of circumcentres: the same quality with fewer
-   * Steiner points (gdr 2d --off-centers). Default off.
+   * Steiner points, as Triangle. Default on (off: gdr 2d --no-off-centers).
    */
   vtkSetMacro(OffCenters, vtkTypeBool);
   vtkGetMacro(OffCenters, vtkTypeBool);
@@ -166,8 +168,8 @@ public:
   /**
    * Triangle's switch string ("pq30a0.1", see gdr::apply_triangle_switches), for users who
    * know Triangle by heart. When set it overrides MinimumAngle, MaximumArea,
-   * MaximumSteinerPoints, RemoveExterior and refinement; an unknown or unsupported switch
-   * is an error. Default empty (the properties alone).
+   * MaximumSteinerPoints, RemoveExterior, Mode (RUPPERT with D, else CHEW) and refinement;
+   * an unknown or unsupported switch is an error. Default empty (the properties alone).
    */
   vtkSetStdStringFromCharMacro(TriangleSwitches);
   vtkGetCharFromStdStringMacro(TriangleSwitches);
@@ -194,10 +196,10 @@ protected:
   double MaximumEdgeLength = 0.0;
   double MaximumArea = 0.0;
   vtkIdType MaximumSteinerPoints = -1;
-  int Mode = RUPPERT;
+  int Mode = CHEW;
   int Backend = AUTO;
   vtkTypeBool RemoveExterior = false;
-  vtkTypeBool OffCenters = false;
+  vtkTypeBool OffCenters = true;
   vtkTypeBool CDTOnly = false;
   vtkTypeBool StrictInput = false;
   std::string TriangleSwitches;

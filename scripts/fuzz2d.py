@@ -151,10 +151,10 @@ def options(r, max_angle):
     o = ["--min-angle", str(r.choice([a for a in (0, 10, 20, 25, 30, 33) if a <= max_angle]))]
     if r.random() < 0.3:
         o.append("--remove-exterior")
+    if r.random() < 0.2:  # the defaults are Triangle's rules; sometimes the others
+        o.append("--no-off-centers")
     if r.random() < 0.2:
-        o.append("--off-centers")
-    if r.random() < 0.2:
-        o += ["--mode", "chew"]
+        o += ["--mode", "ruppert"]
     if r.random() < 0.2:
         o.append("--strict")
     if r.random() < 0.2:

@@ -148,7 +148,7 @@ _CELL_ARRAYS = {"MinAngle": "min_angle", "MaxAngle": "max_angle",
 
 def refine_2d(points, segments=None, holes=None, min_angle=20.0, max_area=None,
               max_edge=None, switches=None, backend="auto", remove_exterior=False,
-              strict=False, max_steiner=None, mode="ruppert", off_centers=False,
+              strict=False, max_steiner=None, mode="chew", off_centers=True,
               cdt_only=False):
     """Quality constrained Delaunay refinement of a planar straight-line graph.
 
@@ -161,7 +161,10 @@ def refine_2d(points, segments=None, holes=None, min_angle=20.0, max_area=None,
     max_area, max_edge, max_steiner: size bounds and the Steiner point cap (None: off).
     switches: Triangle's switch string ("pq30a0.1"); it overrides the options it names,
         as gdr 2d reads it, and an unsupported switch raises MeshingError.
-    backend: "auto", "gpu" or "cpu". mode: "ruppert" or "chew".
+    backend: "auto", "gpu" or "cpu".
+    mode, off_centers: Triangle's rules by default: "chew" (a point encroaches a segment
+        inside its diametral lens) and off-centres; "ruppert" (diametral circles, Triangle's
+        -D) and off_centers=False (circumcentres) insert more points.
 
     Returns a MeshResult with points (m, 2), triangles (t, 3), point_type (m,), the cell
     arrays min_angle, max_angle, radius_edge_ratio, area and is_bad (t,), and stats.
@@ -198,8 +201,7 @@ def refine_2d(points, segments=None, holes=None, min_angle=20.0, max_area=None,
     mesher.SetRemoveExterior(bool(remove_exterior))
     mesher.SetStrictInput(bool(strict))
     mesher.SetMode(mesher.CHEW if mode == "chew" else mesher.RUPPERT)
-    if off_centers:
-        mesher.SetOffCenters(True)
+    mesher.SetOffCenters(bool(off_centers))
     if cdt_only:
         mesher.SetCDTOnly(True)
     mesher.SetBackend({"auto": mesher.AUTO, "gpu": mesher.GPU, "cpu": mesher.CPU}[backend])

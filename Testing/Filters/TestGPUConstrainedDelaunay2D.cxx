@@ -350,7 +350,7 @@ void TestLinesAndPoints()
   vtkNew<vtkPolyData> cloud;
   cloud->SetPoints(points);
   filter->SetInputData(cloud);
-  filter->SetModeToChew();
+  filter->SetModeToRuppert(); // the default is Chew
   filter->Update();
   CheckArrays(filter);
   gdr::Pslg cloudPslg = PslgOf(cloud);
@@ -388,6 +388,8 @@ void TestOutOfRange()
   vtkNew<vtkGPUConstrainedDelaunay2D> filter;
   CHECK(filter->GetMinimumAngle() == 20);
   CHECK(filter->GetMaximumSteinerPoints() == -1);
+  // Triangle's rules by default: the lens and off-centres.
+  CHECK(filter->GetMode() == vtkGPUConstrainedDelaunay2D::CHEW && filter->GetOffCenters());
   CHECK(filter->GetBackend() == vtkGPUConstrainedDelaunay2D::AUTO);
   filter->SetBackend(9);
   CHECK(filter->GetBackend() == vtkGPUConstrainedDelaunay2D::CPU);
@@ -430,7 +432,8 @@ void TestOutOfRange()
   CHECK(filter->GetOutput()->GetNumberOfCells() > 0);
 }
 
-// OffCenters meshes with fewer Steiner points at the same bound; CDTOnly inserts none.
+// OffCenters (the default) meshes with fewer Steiner points at the same bound than
+// circumcentres; CDTOnly inserts none.
 void TestOffCentersAndCDTOnly()
 {
   vtkNew<vtkGPUConstrainedDelaunay2D> filter;
@@ -444,6 +447,7 @@ void TestOffCentersAndCDTOnly()
     vtkDataArray* a = filter->GetOutput()->GetFieldData()->GetArray("SteinerPoints");
     return a ? a->GetComponent(0, 0) : -1.0;
   };
+  filter->OffCentersOff();
   const double circumcenters = steinerPoints();
   filter->OffCentersOn();
   const double offCenters = steinerPoints();

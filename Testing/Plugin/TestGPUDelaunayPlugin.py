@@ -34,7 +34,8 @@ def main():
     check(mesh.MinimumAngle == 20, "MinimumAngle default")
     check(mesh.MaximumEdgeLength == 0 and mesh.MaximumArea == 0, "size bounds off by default")
     check(mesh.MaximumSteinerPoints == -1, "MaximumSteinerPoints default")
-    check(mesh.Mode == "Ruppert" and mesh.Backend == "Auto", "Mode/Backend defaults")
+    check(mesh.Mode == "Chew" and mesh.Backend == "Auto", "Mode/Backend defaults")
+    check(mesh.OffCenters == 1, "OffCenters default (Triangle's rules)")
     check(mesh.RemoveExterior == 0 and mesh.StrictInput == 0, "boolean defaults")
     check_documented(mesh, ("MinimumAngle", "MaximumEdgeLength", "MaximumArea",
                             "MaximumSteinerPoints", "Mode", "Backend", "RemoveExterior",

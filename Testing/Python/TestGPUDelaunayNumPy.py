@@ -4,6 +4,7 @@ dict input, warnings and errors as Python exceptions carrying the core's message
 Run with /usr/bin/python3 and PYTHONPATH=<build>/python:
     TestGPUDelaunayNumPy.py
 """
+import os
 import sys
 import warnings
 
@@ -79,6 +80,41 @@ def test_triangle_style():
     check(len(cdt.points) == 6 and len(cdt.triangles) == 4, "p alone: the CDT")
 
 
+def read_poly(path):
+    """Points, segments (0-based) and holes of a Triangle .poly file with its points in it."""
+    rows = [line.split("#")[0].split() for line in open(path)]
+    rows = [r for r in rows if r]
+    n = int(rows[0][0])
+    first = int(rows[1][0])
+    points = np.array([[float(r[1]), float(r[2])] for r in rows[1:1 + n]])
+    k = int(rows[1 + n][0])
+    segments = np.array([[int(r[1]) - first, int(r[2]) - first] for r in rows[2 + n:2 + n + k]])
+    h = int(rows[2 + n + k][0])
+    holes = np.array([[float(r[1]), float(r[2])] for r in rows[3 + n + k:3 + n + k + h]])
+    return points, segments, holes
+
+
+def test_rules():
+    # Triangle's rules by default (lens, off-centres); diametral circles (mode="ruppert" or
+    # Triangle's D) and circumcentres on request, with more points.
+    gear = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "apps", "gdr",
+                        "examples", "gear.poly")
+    points, segments, holes = read_poly(gear)
+    steiner = {}
+    for name, kwargs in (("default", {}), ("circles", dict(mode="ruppert", off_centers=False)),
+                         ("D", dict(switches="pcq30D"))):
+        mesh = gpudelaunay.refine_2d(points, segments, holes, min_angle=30, backend="cpu",
+                                     **kwargs)
+        smallest, area = angles_and_areas(mesh.points, mesh.triangles)
+        check(np.all(area > 0), "%s: counter-clockwise triangles" % name)
+        check(smallest.min() >= 30 - 1e-9 and mesh.stats["BadTriangles"] == 0,
+              "%s: minimum angle %.3f" % (name, smallest.min()))
+        steiner[name] = mesh.stats["SteinerPoints"]
+    # 281, 313 and 294 on one run (D: circles with off-centres)
+    check(steiner["default"] < steiner["circles"] and steiner["default"] <= steiner["D"],
+          "Steiner points %s" % steiner)
+
+
 def test_warnings_and_errors():
     cross = np.array([[0, 0], [2, 2], [0, 2], [2, 0]], dtype=float)
     lines = [[0, 1], [2, 3]]
@@ -98,10 +134,10 @@ def test_warnings_and_errors():
         check("segment 0 and segment 1 cross" in e.message, "message: %s" % e.message)
 
     try:
-        gpudelaunay.refine_2d(cross, lines, switches="pqD", backend="cpu")
-        check(False, "switch D accepted")
+        gpudelaunay.refine_2d(cross, lines, switches="pqV", backend="cpu")
+        check(False, "switch V accepted")
     except gpudelaunay.MeshingError as e:
-        check(e.status == "InvalidInput" and "'D'" in e.message, "switches: %s" % e)
+        check(e.status == "InvalidInput" and "'V'" in e.message, "switches: %s" % e)
 
     for bad in (dict(points=np.zeros((3, 4))), dict(points=cross, segments=[[0, 9]])):
         try:
@@ -114,6 +150,7 @@ def test_warnings_and_errors():
 def main():
     test_arrays_in_and_out()
     test_triangle_style()
+    test_rules()
     test_warnings_and_errors()
     print("NumPy API: all checks passed")
 

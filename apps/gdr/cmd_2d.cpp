@@ -58,6 +58,7 @@ Triangle's switches, for users who know Triangle by heart, as one argument with 
   c  keep the convex hull meshed        q[DEG]  minimum angle (20 without a number)
   a<A>  maximum triangle area           S<N>    Steiner point cap
   a  the regions' maximum areas         A       the regions' attributes (Region)
+  D  diametral circles (--mode ruppert; without D the lens, --mode chew)
   z  number output files from 0         Q quiet         C check the mesh (--check)
 Without q or a Triangle does not refine, nor does gdr; without a and A the regions are not
 used (without switches they always are). Other switches are refused. Long
@@ -75,8 +76,11 @@ Quality and size:
                           the size bounds ask for, within memory); bounds whose mesh
                           cannot fit in memory are refused before refining
 Algorithm:
-  --mode ruppert|chew     encroachment by diametral circle (ruppert, default) or lens (chew)
-  --off-centers           insert off-centers instead of circumcenters (fewer points)
+  --mode chew|ruppert     a point encroaches a subsegment inside its diametral lens of
+                          angle 180 - 2 x min angle (chew, default, as Triangle) or inside
+                          its diametral circle (ruppert, as Triangle's -D: more points)
+  --no-off-centers        insert circumcenters instead of Ungor's off-centers (the
+                          default, as Triangle: fewer points); --off-centers is accepted
   --remove-exterior       keep only triangles enclosed by segments (and outside holes)
   --strict                refuse points lying on segments and crossing, touching or
                           overlapping segments (by default segments are split there, as
@@ -148,6 +152,7 @@ Args2d parse_2d(const std::vector<std::string>& args) {
          else throw UsageError(cmd, "--mode must be 'ruppert' or 'chew', got '" + v + "'");
        }},
       {"off-centers", 0, false, [&](const std::string&) { a.options.off_centers = true; }},
+      {"no-off-centers", 0, false, [&](const std::string&) { a.options.off_centers = false; }},
       {"deterministic", 0, false, [&](const std::string&) { a.options.deterministic = true; }},
       {"remove-exterior", 0, false, [&](const std::string&) { a.options.remove_exterior = true; }},
       {"strict", 0, false, [&](const std::string&) { a.options.strict_input = true; }},

@@ -34,7 +34,7 @@ TriangleSwitches apply_triangle_switches(const std::string& switches, Refine2dOp
   std::size_t i = !switches.empty() && switches[0] == '-' ? 1 : 0;
   if (i == switches.size()) refuse(switches, "no switches");
   bool pslg = false, convex_hull = false, quality = false, area = false;
-  bool region_areas = false, region_attributes = false;
+  bool region_areas = false, region_attributes = false, circles = false;
   while (i < switches.size()) {
     const char c = switches[i++];
     const bool numbered = c == 'q' || c == 'a' || c == 'S';
@@ -65,13 +65,13 @@ TriangleSwitches apply_triangle_switches(const std::string& switches, Refine2dOp
       case 'z': t.zero_based = true; break;
       case 'Q': t.quiet = true; break;
       case 'C': t.check = true; break;
-      case 'D':
-        refuse(switches, "'D' (conforming Delaunay) is not supported: gdr makes constrained "
-                         "Delaunay meshes");
+      // Triangle's conforming Delaunay switch: subsegments are encroached by their diametral
+      // circles, so that no vertex they see lies in them.
+      case 'D': circles = true; break;
       default:
         refuse(switches, "'" + std::string(1, c) +
-                             "' is not supported (supported: p, c, q[angle], a[area], A, S<n>, z, "
-                             "Q, C; see README \"Triangle's switches\")");
+                             "' is not supported (supported: p, c, q[angle], a[area], A, S<n>, D, "
+                             "z, Q, C; see README \"Triangle's switches\")");
     }
   }
   // Triangle refines only with q or a, and without c eats the triangles that segments do
@@ -81,6 +81,7 @@ TriangleSwitches apply_triangle_switches(const std::string& switches, Refine2dOp
   o.remove_exterior = pslg && !convex_hull;
   o.region_areas = region_areas;
   o.region_attributes = region_attributes;
+  o.mode = circles ? EncroachMode::Ruppert : EncroachMode::Chew;
   return t;
 }
 
