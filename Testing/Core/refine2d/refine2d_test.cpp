@@ -375,7 +375,8 @@ TEST_P(Refine2d, HugeAndTinyCoordinates) {
 }
 
 // Every combination of the rules meets the bound; the defaults are Triangle's (the lens and
-// off-centres), which need the fewest points.
+// off-centres). (Not always the fewest points: on the gear at 25 degrees diametral circles
+// with off-centres took 195 Steiner points, the defaults 224, Triangle 189.)
 TEST_P(Refine2d, EncroachmentModesAndOffCenters) {
   Pslg g;
   add_loop(g, regular_polygon(13, 1.0));
@@ -384,17 +385,13 @@ TEST_P(Refine2d, EncroachmentModesAndOffCenters) {
   EXPECT_EQ(o.mode, gdr::EncroachMode::Chew);
   EXPECT_TRUE(o.off_centers);
   o.min_angle = 25;
-  const auto defaults = mesh(g, o);
-  EXPECT_EQ(defaults.stats.bad_triangles, 0);
   for (auto mode : {gdr::EncroachMode::Ruppert, gdr::EncroachMode::Chew})
     for (bool off_centers : {false, true}) {
       SCOPED_TRACE(std::string(mode == gdr::EncroachMode::Chew ? "chew" : "ruppert") +
                    (off_centers ? " off-centres" : " circumcentres"));
       o.mode = mode;
       o.off_centers = off_centers;
-      const auto r = mesh(g, o);
-      EXPECT_EQ(r.stats.bad_triangles, 0);
-      EXPECT_LE(defaults.stats.steiner_points, r.stats.steiner_points);
+      EXPECT_EQ(mesh(g, o).stats.bad_triangles, 0);
     }
 }
 
