@@ -1,0 +1,34 @@
+#!/bin/sh
+# The ParaView GUI shows a restricted Delaunay run without tetrahedra (an open surface) by
+# its surface and its facet-angle histogram. Runs inside `xvfb-run -s "-screen 0 1600x1000x24"`:
+#   gui_surface_only_test.sh PARAVIEW PLUGIN OUTDIR
+# gui_surface_only.py meshes an open hemisphere and shows the outputs; this driver checks,
+# from the display properties it logs, that the plugin's GUI component hid the empty
+# tetrahedra, showed the surface with its edges and the facet angles in the chart, and saves
+# a screenshot (OUTDIR/gui_surface_only.png).
+paraview=$1; plugin=$2; out=$3
+here=$(cd "$(dirname "$0")" && pwd)
+mkdir -p "$out"
+log="$out/gui_surface_only.log"
+rm -f "$log"
+GDR_PLUGIN=$plugin GDR_GUI_LOG=$log \
+  "$paraview" --dr --script="$here/gui_surface_only.py" > "$out/gui_surface_only_paraview.txt" 2>&1 &
+pv=$!
+fail() { echo "FAILED: $*"; cat "$log" 2>/dev/null | tail -20; kill $pv 2>/dev/null; exit 1; }
+wait_for() { # PATTERN SECONDS
+  i=0
+  while ! grep -q "$1" "$log" 2>/dev/null; do
+    i=$((i + 1)); [ $i -gt $(($2 * 4)) ] && return 1; sleep 0.25
+  done
+}
+wait_for ready 120 || fail "the GUI did not start"
+grep -q "ready cells=0 surface=[1-9]" "$log" || fail "expected a surface and no tetrahedra"
+wait_for "tets visible=0 surface visible=1 representation=Surface With Edges" 30 ||
+  fail "the surface was not shown instead of the empty tetrahedra"
+wait_for "series shown=FacetAngleCount label=smallest angle per surface triangle title=Angle histograms" 30 ||
+  fail "the chart does not show the facet angles alone"
+sleep 8                                   # the window and the welcome dialog
+xdotool mousemove 893 576 click 1; sleep 2                         # close the dialog
+import -window root "$out/gui_surface_only.png"
+kill $pv
+echo "GUI surface-only display passed"
