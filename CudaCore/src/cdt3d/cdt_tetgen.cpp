@@ -24,6 +24,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <numeric>
 #include <unordered_map>
 
@@ -443,8 +445,18 @@ m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks) {
   if (plc.triangle_cell.size() != plc.triangles.size() || plc.cell_in_domain.empty())
     throw Error(Status::InvalidInput, "initial_cdt needs a closed surface checked with require_closed");
   if (callbacks.progress) callbacks.progress(0.0, "constrained Delaunay tetrahedralization (TetGen)");
+  // GDR_TRACE: the time of each step on stderr (TetGen against our conversions).
+  const bool trace = std::getenv("GDR_TRACE") != nullptr;
+  auto last = std::chrono::steady_clock::now();
+  auto stamp = [&](const char* what) {
+    if (!trace) return;
+    const auto now = std::chrono::steady_clock::now();
+    std::fprintf(stderr, "gdr-trace cdt %s: %.3f s\n", what, std::chrono::duration<double>(now - last).count());
+    last = now;
+  };
   tetgenio in, out;
   fill_input(plc, in);
+  stamp("fill TetGen input");
   try {
     run_tetgen("pnO0JQ", in, out);
   } catch (const Error& e) {
@@ -457,11 +469,17 @@ m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks) {
     out.initialize();
     run_tetgen("pYnO0JQ", in, out);
   }
+  stamp("TetGen");
   if (callbacks.abort && callbacks.abort()) throw Error(Status::Aborted, "aborted after the initial CDT");
   const HostTetMesh full = convert(plc, out);
-  HostTetMesh m = keep_domain(plc, full, tet_cells(plc, full));
+  stamp("convert");
+  const std::vector<int> cells = tet_cells(plc, full);
+  stamp("cells");
+  HostTetMesh m = keep_domain(plc, full, cells);
+  stamp("keep domain");
   mark_subsegments(plc, m);
   set_facet_planes(plc, m);
+  stamp("subsegments, facet planes");
 #ifndef NDEBUG
   m3d::check_host_mesh(m);
 #endif

@@ -2,8 +2,11 @@
 // Every decision is an exact predicate or an exact comparison of coordinates; big steps
 // (sorting, degeneracy, the self-intersection search) run in parallel.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <numeric>
 #include <parallel/algorithm>
 
@@ -319,19 +322,31 @@ void make_segments(const Surface& s, const EdgeTable& edges, const std::vector<i
 Plc check_surface(const Surface& surface, const CheckOptions& options, const Callbacks& callbacks) {
   Plc plc;
   progress(callbacks, 0.0, "checking the surface");
+  // GDR_TRACE: the time of each check on stderr.
+  const bool trace = std::getenv("GDR_TRACE") != nullptr;
+  auto last = std::chrono::steady_clock::now();
+  auto stamp = [&](const char* what) {
+    if (!trace) return;
+    const auto now = std::chrono::steady_clock::now();
+    std::fprintf(stderr, "gdr-trace check %s: %.3f s\n", what, std::chrono::duration<double>(now - last).count());
+    last = now;
+  };
   check_finite(surface);
   check_ranges(surface);
   const std::vector<int> origin = merge_points(surface, callbacks, plc);
   check_dimension(plc.points);
   clean_triangles(surface, callbacks, plc);
+  stamp("finite, merge, clean");
   plc.holes = surface.holes;
   plc.regions = surface.regions;
   check_abort(callbacks);
 
   EdgeTable edges = build_edges(plc.triangles);
   if (options.require_closed) check_closed(edges, origin);
+  stamp("edges, closed");
   progress(callbacks, 0.2, "self-intersections");
   check_self_intersections(plc);
+  stamp("self-intersections");
   check_abort(callbacks);
 
   if (options.require_closed) {
@@ -343,9 +358,11 @@ Plc check_surface(const Surface& surface, const CheckOptions& options, const Cal
       drop_outside_triangles(plc, callbacks);
     if (plc.outside_triangles) edges = build_edges(plc.triangles);
   }
+  stamp("cells");
   progress(callbacks, 0.8, "facets and segments");
   make_facets(surface, edges, plc);
   make_segments(surface, edges, origin, plc);
+  stamp("facets, segments");
   progress(callbacks, 1.0, "surface checked");
   return plc;
 }
