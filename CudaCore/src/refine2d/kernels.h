@@ -337,15 +337,10 @@ GDR_HD_INLINE float size_class(double size) {
 // against 345k worst-first by radius-edge ratio); smallest-first needs 3-10% fewer points than
 // worst-first at 20-30 degrees (Benchmarks/RESULTS.md, issue 13). For size, a finer order takes
 // more iterations (counties at 1M points: 89 against 68 on the H100, 29% slower).
-// Above 30 degrees, where refinement may cascade, worst first by radius-edge ratio (squared)
-// instead: smallest-first cascaded on the world map at 33.5 degrees (400k points and on).
-GDR_HD_INLINE float radius_edge_ratio2(const MeshView& m, int t, double r2) {
-  const double* a = pt(m, m.tv[3 * t]);
-  const double* b = pt(m, m.tv[3 * t + 1]);
-  const double* d = pt(m, m.tv[3 * t + 2]);
-  const double q = r2 / fmin(dist2(a, b), fmin(dist2(b, d), dist2(d, a)));
-  return q < 1e38 ? static_cast<float>(q) : 1e38f;
-}
+// Above 30 degrees too: worst first by radius-edge ratio took 1.05-2x the points on the maps
+// at 33-33.5 degrees, with bad areas alike (below 0.01%). (It was kept there while
+// smallest-first cascaded on the world map at 33.5 degrees with Triangle's shells; with the
+// shells from input vertices used above 30 degrees it does not.)
 GDR_HD_INLINE float shortest_edge_class(const MeshView& m, int t) {
   const double* a = pt(m, m.tv[3 * t]);
   const double* b = pt(m, m.tv[3 * t + 1]);
@@ -446,10 +441,7 @@ struct ComputeSplittingPoints {
         cand.start = u;
         cand.ek = -1;
         if (worst_first && !too_big(m, t, c))
-          cand.prio = exec::make_priority(kClassShape,
-                                          c.sin2_min_angle <= 0.25 ? shortest_edge_class(m, t)
-                                                                   : radius_edge_ratio2(m, t, r2),
-                                          id);
+          cand.prio = exec::make_priority(kClassShape, shortest_edge_class(m, t), id);
         else
           cand.prio = exec::make_priority(kClassTriangle, size_class(r2), id);
         return;
@@ -504,6 +496,19 @@ GDR_HD_INLINE bool is_split_edge(const MeshView& m, const Candidate& c, int t, i
   return m.tn[3 * c.start + c.ek] == 3 * t + e;
 }
 
+// The triangle that a subsegment split's cavity starts from: the one on the split point's
+// side of the subsegment. Rounding can put the point a little off the subsegment, outside the
+// circle of the triangle across, which then joins the cavity only if its circle holds the
+// point (GrowCavity): forced in, it left a non-Delaunay edge from the point to its apex.
+GDR_HD_INLINE int split_start(const MeshView& m, const Candidate& c) {
+  const int nb = m.tn[3 * c.start + c.ek];
+  const double p[2] = {c.x, c.y};
+  if (nb < 0 || pred::orient2d(pt(m, m.tv[3 * c.start + next3(c.ek)]),
+                               pt(m, m.tv[3 * c.start + prev3(c.ek)]), p) >= 0)
+    return c.start;
+  return nb / 3;
+}
+
 struct GrowCavity {
   MeshView m;
   const Candidate* cand;
@@ -543,7 +548,7 @@ struct GrowCavity {
     for (int e = 0; e < 3; ++e) {
       const int nb = m.tn[3 * t + e];
       if (is_split_edge(m, c, t, e)) {
-        if (nb >= 0) out[n++] = CavityTuple{h.pt, nb / 3, kForceIn};
+        if (nb >= 0) out[n++] = CavityTuple{h.pt, nb / 3, 0};  // split_start
         continue;
       }
       if (is_subseg(m, t, e)) {
@@ -569,7 +574,9 @@ struct GrowCavity {
 // the shared edges, and both points go in together only if each shared unconstrained edge
 // stays locally Delaunay (the other point not inside the circle of our new triangle on it),
 // so the mesh stays constrained Delaunay. The paper's cavities need not be independent
-// either; its flips repair such edges afterwards.
+// either; its flips repair such edges afterwards. A subsegment split by either point may not
+// lie between the two: the side of it that stays (split_start) makes it an ordinary edge,
+// which the other fan would keep as a subsegment.
 struct VerifyClaims {
   MeshView m;
   const Candidate* cand;
@@ -590,7 +597,12 @@ struct VerifyClaims {
     const double q[2] = {cand[other - 1].x, cand[other - 1].y};
     for (int e = 0; e < 3; ++e) {
       const int nb = m.tn[3 * r + e];
-      if (nb < 0 || is_subseg(m, r, e) || m.mark[nb / 3] != h.pt + 1) continue;
+      if (nb < 0 || m.mark[nb / 3] != h.pt + 1) continue;
+      if (is_split_edge(m, cand[h.pt], r, e) || is_split_edge(m, cand[other - 1], r, e)) {
+        failed[h.pt] = 1;
+        return;
+      }
+      if (is_subseg(m, r, e)) continue;
       const int c = nb / 3, ce = nb % 3;  // our cavity triangle and its edge on r
       if (pred::incircle(pt(m, m.tv[3 * c + next3(ce)]), pt(m, m.tv[3 * c + prev3(ce)]), p, q) > 0)
         failed[h.pt] = 1;
@@ -616,12 +628,15 @@ struct SetInCavity {
 
 // Edge e of cavity triangle t: 0 interior to the cavity, 1 boundary edge that gets a new
 // triangle (fan from the point), 2 the split subsegment on the domain boundary (no triangle).
+// A split subsegment whose other side stays out of the cavity (split_start) is a fan edge:
+// its new triangle is flat, with the two halves as edges and the old subsegment as an
+// ordinary one, which is what a flip would make of it.
 enum : int { kEdgeInterior = 0, kEdgeFan = 1, kEdgeHullSplit = 2 };
 
 GDR_HD_INLINE int cavity_edge(const MeshView& m, const Candidate& c, int j, int t, int e) {
   const int nb = m.tn[3 * t + e];
-  if (is_split_edge(m, c, t, e)) return nb < 0 ? kEdgeHullSplit : kEdgeInterior;
-  if (nb >= 0 && (m.tflag[nb / 3] & kInCavity) && m.mark[nb / 3] == j + 1) return kEdgeInterior;
+  if (nb < 0) return is_split_edge(m, c, t, e) ? kEdgeHullSplit : kEdgeFan;
+  if ((m.tflag[nb / 3] & kInCavity) && m.mark[nb / 3] == j + 1) return kEdgeInterior;
   return kEdgeFan;
 }
 
@@ -721,9 +736,17 @@ struct CreateFan {
       }
       m.tn[3 * nt] = -1;
       m.tn[3 * nt + 1] = -1;
-      // The fan edge keeps its flags; the edges at p are halves of a split subsegment.
-      int flags = (m.tflag[t] & (kSplitEdge0 << e)) ? (kSplitEdge0 << 2) : 0;
-      if (is_subseg(m, t, e)) flags |= kSubseg0 << 2;
+      // The fan edge keeps its flags, unless it is the split subsegment (a flat triangle,
+      // cavity_edge): then it is an ordinary edge on both sides, and the triangle across
+      // collects its elements anew. The edges at p are halves of a split subsegment.
+      int flags = 0;
+      if (is_split_edge(m, c, t, e)) {
+        exec::atomic_and(&m.tflag[outer / 3], ~((kSubseg0 | kSplitEdge0) << (outer % 3)));
+        exec::atomic_or(&m.tflag[outer / 3], kFresh);
+      } else {
+        if (m.tflag[t] & (kSplitEdge0 << e)) flags |= kSplitEdge0 << 2;
+        if (is_subseg(m, t, e)) flags |= kSubseg0 << 2;
+      }
       if (y == split_a || y == split_b) flags |= kSubseg0;
       if (x == split_a || x == split_b) flags |= kSubseg0 << 1;
       m.tflag[nt] = flags | kFresh | (m.tflag[t] & (kMaxRegions << kRegionShift));

@@ -480,9 +480,10 @@ TEST_P(Refine2d, SteinerCapStopsCleanly) {
 }
 
 // Refinement may not end (above 30 degrees, or in a thin domain at any angle), so unless a
-// cap is set an automatic one applies: on an input where our refinement cascades at 34
-// degrees (on the CPU path; the GPU's rounding happens to steer clear), the run stops there
-// cleanly with a valid mesh, or else meets the bound.
+// cap is set an automatic one applies: on an input where refinement cascaded at 34 degrees
+// with diametral circles and circumcentres (on the CPU path; the GPU's rounding happened to
+// steer clear), the run stops there cleanly with a valid mesh, or else meets the bound (with
+// the defaults it does, with about 200 Steiner points).
 TEST_P(Refine2d, AnAutomaticCapEndsACascade) {
   const Pslg g = gdr::io::read_poly(std::string(GDR_DATA_DIR) + "/cascade34.poly");
   auto o = options();
