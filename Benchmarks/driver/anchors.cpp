@@ -122,7 +122,7 @@ Result run_triangle(const Case& c, Inputs& inputs, const Settings& s, double max
   if (c.text("exterior", "keep") != "remove") base += "c";
   // Triangle's own encroachment is our chew mode (the lens of angle 180 - 2 theta); -D gives
   // diametral circles (and a conforming Delaunay mesh), our ruppert mode.
-  if (c.text("mode", "ruppert") == "ruppert") base += "D";
+  if (c.text("mode", "chew") == "ruppert") base += "D";
   std::string quality;
   if (theta > 0) quality += "q" + number_arg(theta);
   if (max_area > 0) quality += "a" + plain_decimal(max_area);
@@ -193,7 +193,7 @@ Result run_gdp2d(const Case& c, Inputs& inputs, const Settings& s, double max_ed
   std::vector<std::string> argv = {exe, fs::absolute(inputs.path(c.input)).string(), "-t",
                                    number_arg(c.number("min_angle", 20.0))};
   if (max_edge > 0) argv.insert(argv.end(), {"-l", number_arg(max_edge)});
-  if (c.text("mode", "ruppert") == "chew") argv.insert(argv.end(), {"-enc", "0"});
+  if (c.text("mode", "chew") == "chew") argv.insert(argv.end(), {"-enc", "0"});
   const fs::path dir = scratch_dir(s, "gdp2d", c);
   Result r = run_result_anchor(c, argv, dir, "triangles", "");
   fs::remove_all(dir);

@@ -67,11 +67,11 @@ gdr::Refine2dOptions refine_options(const Case& c, double max_edge) {
   o.max_edge_length = max_edge;
   o.max_area = c.number("max_area", 0.0);
   o.max_steiner_points = static_cast<long long>(c.number("max_steiner", -1));
-  const std::string mode = c.text("mode", "ruppert");
+  const std::string mode = c.text("mode", "chew");  // the engine's defaults: Triangle's rules
   if (mode != "ruppert" && mode != "chew")
     throw gdr::Error(gdr::Status::InvalidInput, "mode must be ruppert or chew, not " + mode);
   o.mode = mode == "chew" ? gdr::EncroachMode::Chew : gdr::EncroachMode::Ruppert;
-  o.off_centers = c.number("off_centers", 0) != 0;
+  o.off_centers = c.number("off_centers", 1) != 0;
   o.remove_exterior = c.text("exterior", "keep") == "remove";
   o.backend = c.runner == "gdr-gpu" ? gdr::Backend::Gpu : gdr::Backend::Cpu;
   return o;
