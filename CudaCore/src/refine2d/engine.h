@@ -277,26 +277,18 @@ struct Engine {
   }
 
   // Line 7, second part: cavities by ExpandList (S2), stragglers deferred (S5). Starts from
-  // the triangle holding the point and, for a subsegment, the triangle across it.
+  // the triangle holding the point or, for a subsegment, the one on the point's side of it
+  // (split_start).
   void grow_cavities(std::size_t ns) {
     failed.resize_discard(ns);
     failed.zero();
-    count.resize_discard(ns);
     const Candidate* cs = cand.data();
     const MeshView mv = dm.view();
-    int* cnt = count.data();
-    Ops::for_each(ns, [=] GDR_HD(long long j) {
-      const Candidate& c = cs[j];
-      cnt[j] = (c.kind == 0 && mv.tn[3 * c.start + c.ek] >= 0) ? 2 : 1;
-    });
-    const std::size_t n0 = static_cast<std::size_t>(Ops::exclusive_scan(cnt, cnt, ns));
-    tuples.resize_discard(n0);
+    tuples.resize_discard(ns);
     CavityTuple* tp = tuples.data();
     Ops::for_each(ns, [=] GDR_HD(long long j) {
       const Candidate& c = cs[j];
-      tp[cnt[j]] = CavityTuple{static_cast<int>(j), c.start, kForceIn};
-      if (c.kind == 0 && mv.tn[3 * c.start + c.ek] >= 0)
-        tp[cnt[j] + 1] = CavityTuple{static_cast<int>(j), mv.tn[3 * c.start + c.ek] / 3, kForceIn};
+      tp[j] = CavityTuple{static_cast<int>(j), c.kind == 0 ? split_start(mv, c) : c.start, kForceIn};
     });
     exec::ExpandListLimits lim;
     // Under a competition cap (contention()) big cavities are the rule, not stragglers: a
@@ -307,7 +299,7 @@ struct Engine {
     }
     lim.block_rounds = params.strategies.block_rounds;
     const exec::ExpandListResult er = exec::expand_list<Space, 3>(
-        tuples, n0, GrowCavity{dm.view(), cand.data(), failed.data(), params.criteria.lens_cos2}, lim);
+        tuples, ns, GrowCavity{dm.view(), cand.data(), failed.data(), params.criteria.lens_cos2}, lim);
     // Deferred cavities must finish next time, or big ones would block their neighbourhood
     // forever. Points whose cavity is still growing give up this iteration.
     allow_deferment = !er.deferred();

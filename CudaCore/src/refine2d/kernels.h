@@ -721,6 +721,7 @@ struct CreateFan {
       if (cavity_edge(m, c, h.pt, t, e) != kEdgeFan) continue;
       const int nt = old_ntri + m.aux[t] + r++;
       const int x = m.tv[3 * t + next3(e)], y = m.tv[3 * t + prev3(e)];
+      const bool split = is_split_edge(m, c, t, e);  // before the link across changes
       m.tv[3 * nt] = x;
       m.tv[3 * nt + 1] = y;
       m.tv[3 * nt + 2] = p;
@@ -740,7 +741,7 @@ struct CreateFan {
       // cavity_edge): then it is an ordinary edge on both sides, and the triangle across
       // collects its elements anew. The edges at p are halves of a split subsegment.
       int flags = 0;
-      if (is_split_edge(m, c, t, e)) {
+      if (split) {
         exec::atomic_and(&m.tflag[outer / 3], ~((kSubseg0 | kSplitEdge0) << (outer % 3)));
         exec::atomic_or(&m.tflag[outer / 3], kFresh);
       } else {
