@@ -341,6 +341,42 @@ TEST_P(Refine2d, TinyInputAnglesTerminateAndReport) {
   EXPECT_LT(r.stats.bad_area_percent, 1.35);
 }
 
+// Fans of the seeded fuzzer (issue 9) at 1e-8 and 1e-12 radians with diametral circles and
+// no angle bound: the segments at the apex are split down to 1e-64 and less, where the
+// coordinate grid rounds a split point off its subsegment, outside the circle of the
+// triangle across. That triangle went into the cavity anyway and left an edge that was not
+// locally Delaunay (one per mesh). The second fan stalls: that is said, and its mesh is as
+// valid as any.
+TEST_P(Refine2d, SplitPointsRoundedOffTheirSubsegmentKeepTheMeshDelaunay) {
+  const std::vector<std::vector<Point2>> fans = {
+      {{2.0, 7.166409890266019e-15}, {2.0, 1.9716542486439405e-08}},
+      {{2.0, 3.4586190430523573e-12}, {2.0, 1.8180602481328246e-14},
+       {1.9999999977061202, 9.578892793150807e-05}, {1.999999999999997, 1.107855720128553e-07}}};
+  for (const auto& ends : fans) {
+    Pslg g;
+    add_loop(g, square(-1, -1, 3, 3));
+    g.points.push_back({0, 0});
+    for (const Point2& e : ends) {
+      g.points.push_back(e);
+      g.segments.push_back({4, static_cast<int>(g.points.size()) - 1});
+    }
+    auto o = options();
+    o.min_angle = 0;
+    o.mode = gdr::EncroachMode::Ruppert;
+    std::string warnings;
+    gdr::Callbacks cb;
+    cb.warning = [&](const std::string& w) { warnings += w + "\n"; };
+    const gdr::Refine2dResult r = gdr::refine_2d(g, o, cb);
+    const gdr::ValidationReport rep = gdr::validate_trimesh(r.mesh, &g, gdr::ValidateOptions{});
+    EXPECT_TRUE(rep.valid) << ends.size() << ": " << rep.summary();
+    EXPECT_EQ(rep.non_delaunay, 0u) << ends.size();
+    EXPECT_EQ(rep.missing_segments, 0u) << ends.size();
+    EXPECT_EQ(mislabelled_subsegments(r.mesh, g), 0) << ends.size();
+    EXPECT_GT(r.stats.steiner_points, 100) << ends.size();  // the apex was refined
+    if (r.stats.stalled) EXPECT_NE(warnings.find("refinement stopped"), std::string::npos);
+  }
+}
+
 TEST_P(Refine2d, SpiralWithSubDegreeAngles) {
   Pslg g;
   std::vector<Point2> pts;
