@@ -348,6 +348,20 @@ TEST_P(RestrictedDelaunayOnBackend, SharedDataSurfaces) {
 // with --feature-angle 30: every check holds, features included, and the volume is the
 // input's up to rounding. fandisk.off passes `gdr rdt --feature-angle 30 --check` too (5-18 s
 // on the shared 2-core box, too long for CI).
+// Sharp features are refused on the GPU backend for now (restricted_delaunay.cpp says why):
+// true, after checking the refusal, when the test runs there.
+bool refused_on_gpu(const Surface& s, const RestrictedDelaunayOptions& o) {
+  if (o.backend != Backend::Gpu) return false;
+  try {
+    restricted_delaunay_3d(s, o, {});
+    ADD_FAILURE() << "sharp features on the GPU were not refused";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.status(), Status::InvalidInput);
+    EXPECT_NE(std::string(e.what()).find("GPU backend"), std::string::npos) << e.what();
+  }
+  return true;
+}
+
 TEST_P(RestrictedDelaunayOnBackend, CadPartKeepsItsFeatures) {
   const std::filesystem::path file = std::filesystem::path(GDR_SHARED_DATA_DIR) / "surfaces" / "thingi10k_65778.off";
   if (!std::filesystem::exists(file)) GTEST_SKIP() << file << " is absent (no ../shared here)";
@@ -356,6 +370,7 @@ TEST_P(RestrictedDelaunayOnBackend, CadPartKeepsItsFeatures) {
   o.backend = GetParam();
   o.keep_triangulation = true;
   o.feature_angle = 30;
+  if (refused_on_gpu(s, o)) return;
   const RestrictedDelaunayResult r = restricted_delaunay_3d(s, o, {});
   expect_valid(r, s, true, true);
   EXPECT_GT(r.stats.corners, 0);
@@ -377,10 +392,11 @@ TEST_P(RestrictedDelaunayOnBackend, TinyAndHugeCoordinates) {
     const RestrictedDelaunayResult r = restricted_delaunay_3d(s, sizes(GetParam(), h, h / 10, h), {});
     expect_valid(r, s, true, true);
     // About the same mesh, scaled: concurrent insertion need not repeat itself, and on a
-    // mesh of 500 tets the GPU's runs differ by up to 6% (H100, 2026-11-24), so counts
-    // within 10%; the volume, which any valid mesh of this surface has, within 1%.
-    EXPECT_NEAR(double(r.mesh.tets.size()), double(ref.mesh.tets.size()), 0.10 * ref.mesh.tets.size());
-    EXPECT_NEAR(double(r.mesh.subfaces.size()), double(ref.mesh.subfaces.size()), 0.10 * ref.mesh.subfaces.size());
+    // mesh of 500 tets the GPU's runs differ by up to 11% (472 against 530, H100,
+    // 2026-11-24), so counts within 15%; the volume, which any valid mesh of this surface
+    // has, within 1%.
+    EXPECT_NEAR(double(r.mesh.tets.size()), double(ref.mesh.tets.size()), 0.15 * ref.mesh.tets.size());
+    EXPECT_NEAR(double(r.mesh.subfaces.size()), double(ref.mesh.subfaces.size()), 0.15 * ref.mesh.subfaces.size());
     EXPECT_NEAR(r.stats.volume, std::ldexp(ref.stats.volume, 3 * e), std::ldexp(0.01 * ref.stats.volume, 3 * e));
   }
 }
@@ -415,6 +431,7 @@ TEST_P(RestrictedDelaunayOnBackend, CubeKeepsItsEdgesAndCorners) {
   const RestrictedDelaunayResult rounded = restricted_delaunay_3d(s, o, {});
   expect_valid(rounded, s, true, true);
   o.feature_angle = 30;
+  if (refused_on_gpu(s, o)) return;
   const RestrictedDelaunayResult r = restricted_delaunay_3d(s, o, {});
   expect_valid(r, s, true, true);
   EXPECT_EQ(r.stats.feature_edges, 12);
@@ -450,6 +467,7 @@ TEST_P(RestrictedDelaunayOnBackend, OpenHemisphereKeepsItsBoundary) {
   RestrictedDelaunayOptions o = sizes(GetParam(), 0.15, 0.015, 0.15);
   const RestrictedDelaunayResult plain = restricted_delaunay_3d(s, o, {});
   o.feature_angle = 30;
+  if (refused_on_gpu(s, o)) return;
   const RestrictedDelaunayResult r = restricted_delaunay_3d(s, o, {});
   expect_valid(r, s, false, false);
   EXPECT_GT(r.stats.feature_edges, 0);
@@ -477,6 +495,7 @@ TEST_P(RestrictedDelaunayOnBackend, InputSegmentsAreFeatures) {
   Surface s = test::unit_cube();
   for (Point3& p : s.points) p = rot.apply(p);
   s.segments = {{4, 5}, {5, 7}, {7, 6}, {6, 4}};  // z = 1 (test::add_box numbers corners by bits)
+  if (refused_on_gpu(s, sizes(GetParam(), 0.2, 0.02, 0.2))) return;
   const RestrictedDelaunayResult r = restricted_delaunay_3d(s, sizes(GetParam(), 0.2, 0.02, 0.2), {});
   expect_valid(r, s, true, true);
   EXPECT_EQ(r.stats.feature_edges, 4);
@@ -498,8 +517,10 @@ TEST_P(RestrictedDelaunayOnBackend, SmoothSurfaceUnaffectedByFeatureAngle) {
   const RestrictedDelaunayResult r = restricted_delaunay_3d(s, o, {});
   EXPECT_EQ(r.stats.feature_edges, 0);
   expect_valid(r, s, true, true);
-  EXPECT_NEAR(double(r.mesh.tets.size()), double(plain.mesh.tets.size()), 0.03 * plain.mesh.tets.size());
-  EXPECT_NEAR(double(r.mesh.subfaces.size()), double(plain.mesh.subfaces.size()), 0.03 * plain.mesh.subfaces.size());
+  // Counts within 10%: the GPU's concurrent insertion does not repeat itself (324 against
+  // 342 subfaces in two runs on the H100, 2026-11-24).
+  EXPECT_NEAR(double(r.mesh.tets.size()), double(plain.mesh.tets.size()), 0.10 * plain.mesh.tets.size());
+  EXPECT_NEAR(double(r.mesh.subfaces.size()), double(plain.mesh.subfaces.size()), 0.10 * plain.mesh.subfaces.size());
 }
 
 // A thin wedge: a prism whose section has a 10-degree angle, so two faces meet at 10 degrees
@@ -519,6 +540,7 @@ TEST_P(RestrictedDelaunayOnBackend, ThinWedgeTerminatesWithExceptions) {
   s.triangles = {{0, 2, 1}, {3, 4, 5}, {0, 1, 4}, {0, 4, 3}, {1, 2, 5}, {1, 5, 4}, {2, 0, 3}, {2, 3, 5}};
   RestrictedDelaunayOptions o = sizes(GetParam(), 0.1, 0.01, 0.1);
   o.feature_angle = 30;
+  if (refused_on_gpu(s, o)) return;
   const RestrictedDelaunayResult r = restricted_delaunay_3d(s, o, {});
   EXPECT_EQ(r.stats.feature_edges, 9);
   EXPECT_EQ(r.stats.corners, 6);
