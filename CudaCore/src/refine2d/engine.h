@@ -42,6 +42,7 @@ struct EngineResult {
   long long inserted = 0;
   bool cap_reached = false;
   bool stalled = false;
+  std::size_t stuck = 0;  // when stalled: bad triangles and encroached subsegments left
   std::size_t peak_bytes = 0;
   std::vector<PhaseTime> phases;
 };
@@ -166,6 +167,7 @@ struct Engine {
         idle = 0;
       } else if (++idle >= 3) {
         res.stalled = true;
+        res.stuck = nl;
         break;
       }
       if (cb.progress)

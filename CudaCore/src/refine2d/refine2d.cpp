@@ -497,7 +497,8 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
                      : "refinement stopped at the Steiner point cap (" +
                            std::to_string(st.steiner_cap) + ")");
     if (er.stalled && cb.warning)
-      cb.warning("refinement stopped: the remaining bad elements cannot be split");
+      cb.warning("refinement stopped: no point can split the " + std::to_string(er.stuck) +
+                 " element(s) left (bad triangles or encroached subsegments)");
   }
   progress(0.96, "writing the mesh");
   const auto t_output = Clock::now();
