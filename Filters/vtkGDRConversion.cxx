@@ -433,6 +433,8 @@ void vtkGDRConversion::AddStats(const gdr::QualityTetStats& stats, vtkFieldData*
   AddValue<vtkDoubleArray>(fd, "MinimumDihedralAngleReached", stats.min_dihedral_deg);
   AddValue<vtkDoubleArray>(fd, "MaximumDihedralAngleReached", stats.max_dihedral_deg);
   AddValue<vtkDoubleArray>(fd, "MaximumRadiusEdgeRatioReached", stats.max_radius_edge);
+  AddValue<vtkIdTypeArray>(fd, "SliversBefore", static_cast<vtkIdType>(stats.slivers_before));
+  AddValue<vtkIdTypeArray>(fd, "SliversAfter", static_cast<vtkIdType>(stats.slivers_after));
   AddValue<vtkDoubleArray>(fd, "Volume", stats.volume);
   AddValue<vtkDoubleArray>(fd, "InputVolume", stats.input_volume);
 }

@@ -88,6 +88,18 @@ public:
 
   ///@{
   /**
+   * Sliver removal after refinement, in degrees (TetGen's -O smoothing): interior Steiner
+   * points of tetrahedra with a dihedral angle below it (or above 180 minus it) move to
+   * raise the smallest dihedral angle around them, keeping the other bounds. Clamped to
+   * [0, 30]; 0 (default) turns it off. The mesh is then not Delaunay where points moved.
+   * The field data SliversBefore and SliversAfter count such tetrahedra.
+   */
+  vtkSetClampMacro(SliverAngle, double, 0.0, 30.0);
+  vtkGetMacro(SliverAngle, double);
+  ///@}
+
+  ///@{
+  /**
    * Upper bound on the volume of the tetrahedra (TetGen's -a); 0 (default) turns it off.
    */
   vtkSetClampMacro(MaximumVolume, double, 0.0, VTK_DOUBLE_MAX);
@@ -136,6 +148,7 @@ protected:
 
   double RadiusEdgeRatio = 2.0;
   double MinimumDihedralAngle = 0.0;
+  double SliverAngle = 0.0;
   double MaximumVolume = 0.0;
   vtkIdType MaximumSteinerPoints = -1;
   int Backend = AUTO;
