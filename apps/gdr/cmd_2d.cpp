@@ -305,15 +305,7 @@ void write_stats_json(const std::string& path, const Args2d& a, const Refine2dRe
   j.field("output_seconds", s.output_seconds);
   j.field("total_seconds", s.total_seconds);
   j.field("peak_device_bytes", static_cast<unsigned long long>(s.peak_device_bytes));
-  j.key("phases");
-  j.begin_array();
-  for (const auto& p : s.phases) {
-    j.begin_object();
-    j.field("name", p.name);
-    j.field("seconds", p.seconds);
-    j.end_object();
-  }
-  j.end_array();
+  j.phases_field("phases", s.phases);
   j.end_object();
 
   j.key("cli_seconds");
@@ -336,10 +328,7 @@ void write_stats_json(const std::string& path, const Args2d& a, const Refine2dRe
     j.field("missing_points", static_cast<unsigned long long>(report->missing_points));
     j.field("missing_segments", static_cast<unsigned long long>(report->missing_segments));
     j.field("non_delaunay", static_cast<unsigned long long>(report->non_delaunay));
-    j.key("problems");
-    j.begin_array();
-    for (const auto& p : report->problems) j.value(p);
-    j.end_array();
+    j.array_field("problems", report->problems);
     j.key("quality");
     j.begin_object();
     j.field("elements", static_cast<unsigned long long>(q.elements));
@@ -350,10 +339,7 @@ void write_stats_json(const std::string& path, const Args2d& a, const Refine2dRe
     j.field("bad_elements", static_cast<unsigned long long>(q.bad_elements));
     j.field("bad_area_percent", q.bad_measure_percent);
     j.field("total_area", q.total_measure);
-    j.key("min_angle_histogram");
-    j.begin_array();
-    for (const auto c : q.histogram) j.value(static_cast<unsigned long long>(c));
-    j.end_array();
+    j.array_field("min_angle_histogram", q.histogram);
     j.end_object();
     j.field("summary", report->summary());
     j.end_object();

@@ -333,24 +333,11 @@ void write_stats_json(const ArgsRdt& a, const RestrictedDelaunayResult& r, const
   j.field("output_seconds", s.output_seconds);
   j.field("total_seconds", s.total_seconds);
   j.field("peak_device_bytes", static_cast<unsigned long long>(s.peak_device_bytes));
-  j.key("phases");
-  j.begin_array();
-  for (const auto& p : s.phases) {
-    j.begin_object();
-    j.field("name", p.name);
-    j.field("seconds", p.seconds);
-    j.end_object();
-  }
-  j.end_array();
+  j.phases_field("phases", s.phases);
   j.end_object();
-  j.key("dihedral_histogram");  // 1-degree bins over [0, 180)
-  j.begin_array();
-  for (const long long c : r.dihedral_histogram) j.value(c);
-  j.end_array();
-  j.key("facet_angle_histogram");  // smallest angle per surface triangle, 1-degree bins over [0, 60]
-  j.begin_array();
-  for (const long long c : r.facet_angle_histogram) j.value(c);
-  j.end_array();
+  j.array_field("dihedral_histogram", r.dihedral_histogram);  // 1-degree bins over [0, 180)
+  // Smallest angle per surface triangle, 1-degree bins over [0, 60].
+  j.array_field("facet_angle_histogram", r.facet_angle_histogram);
   j.key("cli_seconds");
   j.begin_object();
   j.field("read", t.read);

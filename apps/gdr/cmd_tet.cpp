@@ -315,21 +315,10 @@ void write_stats_json(const std::string& path, const ArgsTet& a, const QualityTe
   j.field("output_seconds", s.output_seconds);
   j.field("total_seconds", s.total_seconds);
   j.field("peak_device_bytes", static_cast<unsigned long long>(s.peak_device_bytes));
-  j.key("phases");
-  j.begin_array();
-  for (const auto& p : s.phases) {
-    j.begin_object();
-    j.field("name", p.name);
-    j.field("seconds", p.seconds);
-    j.end_object();
-  }
-  j.end_array();
+  j.phases_field("phases", s.phases);
   j.end_object();
 
-  j.key("dihedral_histogram");  // 1-degree bins over [0, 180)
-  j.begin_array();
-  for (const long long c : r.dihedral_histogram) j.value(c);
-  j.end_array();
+  j.array_field("dihedral_histogram", r.dihedral_histogram);  // 1-degree bins over [0, 180)
 
   j.key("cli_seconds");
   j.begin_object();
@@ -357,10 +346,7 @@ void write_stats_json(const std::string& path, const ArgsTet& a, const QualityTe
     j.field("invalid_subsegments", count(report->invalid_subsegments));
     j.field("invalid_subfaces", count(report->invalid_subfaces));
     j.field("boundary_errors", count(report->boundary_errors));
-    j.key("problems");
-    j.begin_array();
-    for (const auto& p : report->problems) j.value(p);
-    j.end_array();
+    j.array_field("problems", report->problems);
     j.key("quality");
     j.begin_object();
     j.field("elements", count(q.elements));

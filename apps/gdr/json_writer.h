@@ -27,11 +27,31 @@ class JsonWriter {
   void value(bool v);
   void null();
 
-  // Shorthands for key + value.
+  // Shorthands for key + value, and key + array of values.
   template <typename T>
   void field(const std::string& k, const T& v) {
     key(k);
     value(v);
+  }
+  template <typename T>
+  void array_field(const std::string& k, const std::vector<T>& values) {
+    key(k);
+    begin_array();
+    for (const T& v : values) value(v);
+    end_array();
+  }
+  // Run phases as [{"name": ..., "seconds": ...}, ...] (any type with name and seconds).
+  template <typename Phase>
+  void phases_field(const std::string& k, const std::vector<Phase>& phases) {
+    key(k);
+    begin_array();
+    for (const Phase& p : phases) {
+      begin_object();
+      field("name", p.name);
+      field("seconds", p.seconds);
+      end_object();
+    }
+    end_array();
   }
 
  private:
