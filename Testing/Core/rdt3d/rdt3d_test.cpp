@@ -517,10 +517,14 @@ TEST_P(RestrictedDelaunayOnBackend, SmoothSurfaceUnaffectedByFeatureAngle) {
   const RestrictedDelaunayResult r = restricted_delaunay_3d(s, o, {});
   EXPECT_EQ(r.stats.feature_edges, 0);
   expect_valid(r, s, true, true);
-  // Counts within 10%: the GPU's concurrent insertion does not repeat itself (324 against
-  // 342 subfaces in two runs on the H100, 2026-11-24).
-  EXPECT_NEAR(double(r.mesh.tets.size()), double(plain.mesh.tets.size()), 0.10 * plain.mesh.tets.size());
-  EXPECT_NEAR(double(r.mesh.subfaces.size()), double(plain.mesh.subfaces.size()), 0.10 * plain.mesh.subfaces.size());
+  // No feature edge, so the same path: the same volume, and on the CPU about the same
+  // counts. (The GPU's concurrent insertion does not repeat itself on a mesh this small: 838
+  // against 954 tets in two runs of the same options on the H100, 2026-11-24.)
+  EXPECT_NEAR(r.stats.volume, plain.stats.volume, 0.01 * plain.stats.volume);
+  if (GetParam() == Backend::Cpu) {
+    EXPECT_NEAR(double(r.mesh.tets.size()), double(plain.mesh.tets.size()), 0.10 * plain.mesh.tets.size());
+    EXPECT_NEAR(double(r.mesh.subfaces.size()), double(plain.mesh.subfaces.size()), 0.10 * plain.mesh.subfaces.size());
+  }
 }
 
 // A thin wedge: a prism whose section has a 10-degree angle, so two faces meet at 10 degrees
