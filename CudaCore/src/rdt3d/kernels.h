@@ -385,20 +385,8 @@ struct ListBad {
 enum : unsigned { kClassShape = 0, kClassCellSize = 1, kClassFacet = 2 };
 static_assert(unsigned(qm3d::kClassSegment) > unsigned(kClassFacet), "feature subsegments are split first");
 
-GDR_HD_INLINE float size_class(double size) {
-  if (!(size > 0) || !(size < 1e38)) return size > 0 ? 1e38f : 0.0f;
-  return static_cast<float>(exp2(floor(log2(size))));
-}
-
-GDR_HD_INLINE unsigned shuffle_id(unsigned x, unsigned salt) {  // a bijection of 32 bits
-  x ^= salt;
-  x ^= x >> 16;
-  x *= 0x7feb352du;
-  x ^= x >> 15;
-  x *= 0x846ca68bu;
-  x ^= x >> 16;
-  return x;
-}
+using exec::shuffle_id;
+using exec::size_class;
 
 struct ComputeSplittingPoints {
   TetView m;

@@ -323,10 +323,8 @@ enum : unsigned { kClassShape = 0, kClassTriangle = 1, kClassWalkSegment = 2, kC
 // class the order is a pseudo-random permutation of the candidates. Exact sizes would make
 // graded neighbourhoods into long chains where each point loses to its bigger neighbour and
 // only one point per chain could be inserted per iteration.
-GDR_HD_INLINE float size_class(double size) {
-  if (!(size > 0) || !(size < 1e38)) return size > 0 ? 1e38f : 0.0f;
-  return static_cast<float>(exp2(floor(log2(size))));
-}
+using exec::shuffle_id;
+using exec::size_class;
 
 // Triangles: those too big for the size bounds first, larger first by size classes (the
 // paper's order); then those bad by their shape alone, smallest first: by the length of their
@@ -347,15 +345,6 @@ GDR_HD_INLINE float shortest_edge_class(const MeshView& m, int t) {
   const double* d = pt(m, m.tv[3 * t + 2]);
   const double l2 = fmin(dist2(a, b), fmin(dist2(b, d), dist2(d, a)));
   return static_cast<float>(2200.0 - floor(2.0 * log2(l2)));  // positive for any double l2 > 0
-}
-GDR_HD_INLINE unsigned shuffle_id(unsigned x, unsigned salt) {  // a bijection of 32 bits
-  x ^= salt;
-  x ^= x >> 16;
-  x *= 0x7feb352du;
-  x ^= x >> 15;
-  x *= 0x846ca68bu;
-  x ^= x >> 16;
-  return x;
 }
 
 GDR_HD_INLINE void make_segment_candidate(const MeshView& m, int t, int k, unsigned klass,
