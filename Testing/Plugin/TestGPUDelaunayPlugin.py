@@ -75,6 +75,24 @@ def main():
     check(sum(counts.GetValue(i) for i in range(60)) == ncells, "histogram total")
     check(all(counts.GetValue(i) == 0 for i in range(25)), "no triangle below 25 degrees")
 
+    # Triangle's switch string overrides the properties: -q30 asks for 30 degrees.
+    check(mesh.TriangleSwitches == "", "TriangleSwitches default (empty)")
+    check(mesh.GetProperty("TriangleSwitches").SMProperty.GetPanelVisibility() == "advanced",
+          "TriangleSwitches is advanced")
+    check_documented(mesh, ("TriangleSwitches",))
+    mesh.TriangleSwitches = "pq30"
+    mesh.UpdatePipeline()
+    lo30 = mesh.CellData["MinAngle"].GetRange()[0]
+    check(lo30 >= 30.0 - 1e-9, "MinAngle %g with switches pq30" % lo30)
+    n30 = mesh.GetDataInformation(0).GetNumberOfCells()
+    print("switches pq30: %d triangles" % n30)
+    check(n30 > 1.2 * ncells, "pq30 refines further: %d against %d triangles" % (n30, ncells))
+    mesh.TriangleSwitches = ""
+    mesh.UpdatePipeline()
+    again = mesh.GetDataInformation(0).GetNumberOfCells()
+    # (Counts of the CPU path may differ a little between runs: threads.)
+    check(abs(again - ncells) <= 0.05 * ncells, "switches cleared: %d triangles, as before" % again)
+
     controller = servermanager.vtkSMParaViewPipelineControllerWithRendering()
     check(controller.GetPreferredViewType(mesh.SMProxy, 1) == "XYBarChartView",
           "histogram port prefers the bar chart view")
