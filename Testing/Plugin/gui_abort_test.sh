@@ -11,18 +11,9 @@
 paraview=$1; plugin=$2; input=$3; out=$4
 here=$(cd "$(dirname "$0")" && pwd)
 mkdir -p "$out"
-log="$out/gui_abort.log"
-rm -f "$log"
-GDR_PLUGIN=$plugin GDR_INPUT=$input GDR_GUI_LOG=$log \
-  "$paraview" --dr --script="$here/gui_abort.py" > "$out/gui_abort_paraview.txt" 2>&1 &
-pv=$!
-fail() { echo "FAILED: $*"; cat "$log" 2>/dev/null | tail -20; kill $pv 2>/dev/null; exit 1; }
-wait_for() { # PATTERN SECONDS
-  i=0
-  while ! grep -q "$1" "$log" 2>/dev/null; do
-    i=$((i + 1)); [ $i -gt $(($2 * 4)) ] && return 1; sleep 0.25
-  done
-}
+. "$here/gui_test_support.sh"
+export GDR_PLUGIN=$plugin GDR_INPUT=$input
+start_paraview "$here/gui_abort.py" gui_abort
 wait_for ready 120 || fail "the GUI did not start"
 sleep 8                                   # the window and the welcome dialog
 xdotool mousemove 893 576 click 1; sleep 1                         # close the dialog

@@ -9,18 +9,9 @@
 paraview=$1; plugin=$2; out=$3
 here=$(cd "$(dirname "$0")" && pwd)
 mkdir -p "$out"
-log="$out/gui_surface_only.log"
-rm -f "$log"
-GDR_PLUGIN=$plugin GDR_GUI_LOG=$log \
-  "$paraview" --dr --script="$here/gui_surface_only.py" > "$out/gui_surface_only_paraview.txt" 2>&1 &
-pv=$!
-fail() { echo "FAILED: $*"; cat "$log" 2>/dev/null | tail -20; kill $pv 2>/dev/null; exit 1; }
-wait_for() { # PATTERN SECONDS
-  i=0
-  while ! grep -q "$1" "$log" 2>/dev/null; do
-    i=$((i + 1)); [ $i -gt $(($2 * 4)) ] && return 1; sleep 0.25
-  done
-}
+. "$here/gui_test_support.sh"
+export GDR_PLUGIN=$plugin
+start_paraview "$here/gui_surface_only.py" gui_surface_only
 wait_for ready 120 || fail "the GUI did not start"
 grep -q "ready cells=0 surface=[1-9]" "$log" || fail "expected a surface and no tetrahedra"
 wait_for "tets visible=0 surface visible=1 representation=Surface With Edges" 30 ||

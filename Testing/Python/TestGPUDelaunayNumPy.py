@@ -11,12 +11,7 @@ import warnings
 import numpy as np
 
 import gpudelaunay
-
-
-def check(condition, message):
-    if not condition:
-        print("FAILED:", message)
-        sys.exit(1)
+from python_test_support import check
 
 
 def angles_and_areas(points, triangles):

@@ -11,12 +11,7 @@ import vtk  # noqa: F401  (the package must work next to the full vtk module)
 from vtkmodules.vtkCommonDataModel import vtkPolyData
 from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
 import gpudelaunay
-
-
-def check(condition, message):
-    if not condition:
-        print("FAILED:", message)
-        sys.exit(1)
+from python_test_support import check
 
 
 def raised(algorithm):

@@ -13,21 +13,7 @@ from vtkmodules.vtkIOXML import (vtkXMLPolyDataReader, vtkXMLPolyDataWriter,
                                  vtkXMLUnstructuredGridReader, vtkXMLUnstructuredGridWriter)
 import gpudelaunay
 from gpudelaunay import vtkGPURestrictedDelaunay3D
-
-
-def check(condition, message):
-    if not condition:
-        print("FAILED:", message)
-        sys.exit(1)
-
-
-def write_and_read(data, path, writer, reader):
-    writer.SetFileName(path)
-    writer.SetInputData(data)
-    check(writer.Write() == 1, "write " + path)
-    reader.SetFileName(path)
-    reader.Update()
-    return reader.GetOutput()
+from python_test_support import check, write_and_read
 
 
 def main():

@@ -1,0 +1,17 @@
+# Sourced by the GUI drivers (gui_*_test.sh): start_paraview SCRIPT NAME starts `paraview
+# --dr --script=SCRIPT` in the background with GDR_GUI_LOG=$out/NAME.log (the events the
+# script logs) and keeps its pid; wait_for PATTERN SECONDS waits for a line of that log;
+# fail MESSAGE prints the log's tail, stops paraview and exits 1. Needs $paraview and $out.
+start_paraview() {
+  log="$out/$2.log"
+  rm -f "$log"
+  GDR_GUI_LOG=$log "$paraview" --dr --script="$1" > "$out/$2_paraview.txt" 2>&1 &
+  pv=$!
+}
+fail() { echo "FAILED: $*"; tail -20 "$log" 2>/dev/null; kill "$pv" 2>/dev/null; exit 1; }
+wait_for() { # PATTERN SECONDS
+  i=0
+  while ! grep -q "$1" "$log" 2>/dev/null; do
+    i=$((i + 1)); [ $i -gt $(($2 * 4)) ] && return 1; sleep 0.25
+  done
+}
