@@ -27,6 +27,7 @@
 
 #include "gdr/backend.h"
 #include "gdr/error.h"
+#include "gdr/refine2d.h"
 #include "gdr/validate.h"
 
 #include <algorithm>
@@ -161,12 +162,19 @@ void vtkGDRConversion::ToPslg(
       map.Segment(ids[i], ids[i + 1]);
     }
   }
+  std::vector<std::vector<int>> rings;  // the polygons, for holes by orientation
   vtkCellArray* polys = input->GetPolys();
   for (polys->InitTraversal(); polys->GetNextCell(npts, ids);)
   {
+    rings.emplace_back();
     for (vtkIdType i = 0; i < npts; ++i)
     {
       map.Segment(ids[i], ids[(i + 1) % npts]);
+      const int v = map.Use(ids[i]);
+      if (rings.back().empty() || (rings.back().back() != v && rings.back().front() != v))
+      {
+        rings.back().push_back(v);
+      }
     }
   }
   vtkCellArray* strips = input->GetStrips();
@@ -212,6 +220,18 @@ void vtkGDRConversion::ToPslg(
     }
   }
   AddFileSeeds(input, pslg);
+  // As vtkDelaunay2D: clockwise polygons inside counter-clockwise ones are holes.
+  int unseeded = 0;
+  for (const gdr::Point2& seed : gdr::clockwise_polygon_holes(pslg, rings, &unseeded))
+  {
+    pslg.holes.push_back(seed);
+  }
+  if (unseeded > 0)
+  {
+    warning += std::string(warning.empty() ? "" : " ") + std::to_string(unseeded) +
+      " clockwise polygon(s) are too thin to place a hole seed in; they are meshed, give Hole "
+      "Seeds for them.";
+  }
 }
 
 //------------------------------------------------------------------------------

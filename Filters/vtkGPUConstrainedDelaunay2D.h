@@ -9,7 +9,8 @@
  * Input (port 0, vtkPolyData): every line and polyline segment is a constrained
  * segment, every polygon contributes its edges (closing edge included) as segments,
  * and vertex cells are isolated input points. A polydata with no cells at all gives
- * all of its points as input points. Only x and y are used.
+ * all of its points as input points. Only x and y are used. As in vtkDelaunay2D,
+ * clockwise polygons are holes when some polygon turns counter-clockwise.
  * Input (port 1, optional, any vtkDataSet): its points are hole seeds; the region
  * enclosed by segments around each seed is removed.
  *

@@ -25,6 +25,7 @@
 #include "gdr/validate.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -314,6 +315,57 @@ void TestPlate()
   CHECK(inputTyped == plate->GetNumberOfPoints());
 }
 
+// Holes by polygon orientation, as vtkDelaunay2D: a clockwise square inside a
+// counter-clockwise one is a hole, a counter-clockwise island inside the hole is meshed
+// again; without a counter-clockwise polygon, orientation means nothing.
+void TestPolygonOrientation()
+{
+  const double outer[4][2] = { { 0, 0 }, { 10, 0 }, { 10, 10 }, { 0, 10 } };
+  const double hole[4][2] = { { 3, 3 }, { 3, 7 }, { 7, 7 }, { 7, 3 } };     // clockwise
+  const double island[4][2] = { { 4, 4 }, { 6, 4 }, { 6, 6 }, { 4, 6 } };   // counter-clockwise
+  auto mesh = [](const std::vector<std::vector<std::array<double, 2>>>& polygons) {
+    vtkNew<vtkPoints> points;
+    vtkNew<vtkCellArray> polys;
+    for (const auto& polygon : polygons)
+    {
+      std::vector<vtkIdType> ids;
+      for (const auto& p : polygon)
+      {
+        ids.push_back(points->InsertNextPoint(p[0], p[1], 0));
+      }
+      polys->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
+    }
+    vtkNew<vtkPolyData> pd;
+    pd->SetPoints(points);
+    pd->SetPolys(polys);
+    vtkNew<vtkGPUConstrainedDelaunay2D> filter;
+    EventLog log;
+    log.Watch(filter);
+    filter->SetInputData(pd);
+    filter->SetBackendToCPU();
+    filter->SetMinimumAngle(20);
+    filter->Update();
+    CHECK(log.Errors.empty());
+    Validate(filter->GetOutput(), PslgOf(pd), 20, true);
+    return ArraySum(filter->GetOutput()->GetCellData()->GetArray("Area"));
+  };
+  auto ring = [](const double (*p)[2], bool reversed) {
+    std::vector<std::array<double, 2>> r;
+    for (int i = 0; i < 4; ++i)
+    {
+      const int k = reversed ? 3 - i : i;
+      r.push_back({ p[k][0], p[k][1] });
+    }
+    return r;
+  };
+  const double withHole = mesh({ ring(outer, false), ring(hole, false), ring(island, false) });
+  CHECK(std::fabs(withHole - (100 - 16 + 4)) < 1e-9);
+  const double noHole = mesh({ ring(outer, false), ring(hole, true), ring(island, false) });
+  CHECK(std::fabs(noHole - 100) < 1e-9);
+  const double allClockwise = mesh({ ring(outer, true), ring(hole, false) });
+  CHECK(std::fabs(allClockwise - 100) < 1e-9);
+}
+
 void TestLinesAndPoints()
 {
   // Open polylines plus free points (vertex cells), meshed over their convex hull.
@@ -577,6 +629,7 @@ int main(int argc, char* argv[])
 {
   const std::map<std::string, std::function<void()>> tests = {
     { "Plate", TestPlate },
+    { "PolygonOrientation", TestPolygonOrientation },
     { "LinesAndPoints", TestLinesAndPoints },
     { "SizeBounds", TestSizeBounds },
     { "OutOfRange", TestOutOfRange },

@@ -108,6 +108,15 @@ struct TriangleSwitches {
 };
 TriangleSwitches apply_triangle_switches(const std::string& switches, Refine2dOptions& options);
 
+// Holes by polygon orientation, as vtkDelaunay2D takes them: when some of `polygons` (rings
+// of PSLG point indices, simple, their edges among pslg.segments) turn counter-clockwise,
+// each clockwise one bounds a hole, and a seed strictly inside it (in the region next to its
+// boundary) is returned for it. Without a counter-clockwise polygon orientation says
+// nothing and no seed is returned. `unseeded` (optional): clockwise polygons too thin for
+// a seed in double precision.
+std::vector<Point2> clockwise_polygon_holes(const Pslg& pslg, const std::vector<std::vector<int>>& polygons,
+                                            int* unseeded = nullptr);
+
 // Checks input and parameters; throws gdr::Error naming the offending items.
 void validate_refine2d_input(const Pslg& input, const Refine2dOptions& options);
 
