@@ -2,8 +2,8 @@
 # -DGDR=exe -DARGS=list -DWORK=dir [-DRC=n] [-DMATCH=regex] [-DNO_OUTPUT=1]
 # [-DFILES=list of files that must exist] [-DJSON=file] [-DJSON_EQUAL=list of path=value]
 # [-DJSON_POSITIVE=list of path] [-DCOPY=list of files copied into WORK before the run]
-# [-DHISTOGRAM=csv]: a `gdr tet --histogram` file, whose 180 rows must sum to six angles per
-# tetrahedron of JSON's stats/output_tets. [-DABSENT=list of files that must not exist
+# [-DHISTOGRAM=csv]: a `gdr tet` or `gdr rdt` --histogram file, whose 180 rows must sum to
+# six angles per tetrahedron of JSON's stats/output_tets. [-DABSENT=list of files that must not exist
 # after the run] [-DFOLDERS=list of folders made in WORK before the run]
 # [-DLINKS=list of name=target: symbolic links made in WORK before the run]
 # [-DULIMIT_V=KiB: the address-space limit to run under] [-DFILE_MATCH=list of file=regex:

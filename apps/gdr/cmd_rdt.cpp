@@ -73,6 +73,8 @@ Checking and reporting:
                            triangulation Delaunay (exact insphere), every sharp feature a
                            chain of surface edges; exit code 1 when invalid
   --stats-json FILE        write the options, statistics, histograms and validation as JSON
+  --histogram FILE.csv     write the dihedral-angle histogram of the tetrahedra (all six
+                           angles of every tetrahedron, 1-degree bins): angle_lo,angle_hi,count
   -q, --quiet              no progress, warnings or summary; errors only
   -h, --help               this text
 
@@ -87,7 +89,7 @@ overwrite an input), 3 input error, 4 device error, 5 internal error, 130 interr
 )";
 
 struct ArgsRdt {
-  std::string input, output, stats_json;
+  std::string input, output, stats_json, histogram;
   RestrictedDelaunayOptions options;
   bool check = false, quiet = false, help = false;
 };
@@ -131,6 +133,7 @@ ArgsRdt parse_rdt(const std::vector<std::string>& args) {
       {"backend", 0, true, [&](const std::string& v) { a.options.backend = parse_backend(cmd, v); }},
       {"check", 0, false, [&](const std::string&) { a.check = true; }},
       {"stats-json", 0, true, [&](const std::string& v) { a.stats_json = v; }},
+      {"histogram", 0, true, [&](const std::string& v) { a.histogram = v; }},
       {"quiet", 'q', false, [&](const std::string&) { a.quiet = true; }},
       {"help", 'h', false, [&](const std::string&) { a.help = true; }},
   };
@@ -144,6 +147,8 @@ ArgsRdt parse_rdt(const std::vector<std::string>& args) {
     if (!a.options.mesh_volume && !surface_output(a.output))
       throw UsageError(cmd, "--surface-only writes a surface: use .vtp or .off for -o");
   }
+  if (!a.histogram.empty() && !a.options.mesh_volume)
+    throw UsageError(cmd, "--histogram counts the dihedral angles of tetrahedra: not with --surface-only");
   if (a.options.facet_angle > 30)
     throw UsageError(cmd, "--facet-angle must be at most 30 (above, refinement need not terminate)");
   if (a.options.feature_angle >= 180) throw UsageError(cmd, "--feature-angle must be below 180");
@@ -157,6 +162,7 @@ std::vector<OutputFile> outputs_of(const ArgsRdt& a) {
     if (extension(a.output) == ".vtu") out.push_back({surface_beside(a.output), "-o " + a.output});
   }
   if (!a.stats_json.empty()) out.push_back({a.stats_json, "--stats-json " + a.stats_json});
+  if (!a.histogram.empty()) out.push_back({a.histogram, "--histogram " + a.histogram});
   return out;
 }
 
@@ -271,6 +277,7 @@ void print_summary(const ArgsRdt& a, const RestrictedDelaunayResult& r, const Re
   if (rep) times.row({"  check", fixed(t.check, 3)});
   times.row({"  wall clock", fixed(t.wall, 3)});
   times.print(std::cout);
+  if (s.volume_meshed) print_dihedral_histogram(std::cout, r.dihedral_histogram);
   std::cout.flush();
 }
 
@@ -409,6 +416,10 @@ int mesh_rdt(const ArgsRdt& a, bool& written) {
   bar.finish();
   const Reports* rep = a.check ? &reports : nullptr;
   if (!a.stats_json.empty()) write_stats_json(a, result, rep, t);
+  if (!a.histogram.empty()) {
+    make_parent_dirs(a.histogram);
+    write_dihedral_histogram_csv(a.histogram, result.dihedral_histogram);
+  }
   if (!a.quiet) print_summary(a, result, rep, t);
   if (a.check && !reports.valid()) {
     std::fprintf(stderr, "gdr: error: the mesh is invalid\n");

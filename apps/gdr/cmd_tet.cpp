@@ -157,31 +157,6 @@ std::string bound(double value, const std::string& unit) {
   return value > 0 ? "bound " + fixed(value, 2) + unit : std::string("no bound");
 }
 
-// The dihedral histogram in 10-degree groups, from the first group with angles to the last,
-// as TetGen's -V statistics show it.
-void print_histogram(std::ostream& out, const std::vector<long long>& bins) {
-  std::vector<long long> groups(18, 0);
-  long long total = 0;
-  for (std::size_t b = 0; b < bins.size(); ++b) {
-    groups[std::min<std::size_t>(b / 10, 17)] += bins[b];
-    total += bins[b];
-  }
-  if (total == 0) return;
-  const auto used = [](long long n) { return n > 0; };
-  const int first = static_cast<int>(std::find_if(groups.begin(), groups.end(), used) - groups.begin());
-  const int last = 17 - static_cast<int>(std::find_if(groups.rbegin(), groups.rend(), used) - groups.rbegin());
-  const long long most = *std::max_element(groups.begin(), groups.end());
-  out << "dihedral angles (all six of every tetrahedron)\n";
-  for (int g = first; g <= last; ++g) {
-    const int width = static_cast<int>(40.0 * groups[g] / most + 0.5);
-    char line[160];
-    std::snprintf(line, sizeof line, "  %3d-%3d deg  %13s  %5.1f%%  %s", 10 * g, 10 * g + 10,
-                  with_commas(groups[g]).c_str(), 100.0 * groups[g] / total,
-                  std::string(groups[g] > 0 ? std::max(width, 1) : 0, '#').c_str());
-    out << line << '\n';
-  }
-}
-
 void print_summary(const ArgsTet& a, const Surface& input, const QualityTetResult& r,
                    const ValidationReport* report, const CliTimes& t) {
   const QualityTetStats& s = r.stats;
@@ -245,15 +220,8 @@ void print_summary(const ArgsTet& a, const Surface& input, const QualityTetResul
   if (report) times.row({"  check", fixed(t.check, 3), ""});
   times.row({"  wall clock", fixed(t.wall, 3), ""});
   times.print(std::cout);
-  print_histogram(std::cout, r.dihedral_histogram);
+  print_dihedral_histogram(std::cout, r.dihedral_histogram);
   std::cout.flush();
-}
-
-void write_histogram_csv(const std::string& path, const std::vector<long long>& bins) {
-  std::string csv = "angle_lo,angle_hi,count\n";
-  for (std::size_t b = 0; b < bins.size(); ++b)
-    csv += std::to_string(b) + "," + std::to_string(b + 1) + "," + std::to_string(bins[b]) + "\n";
-  io::write_file_atomically(path, csv);
 }
 
 void write_stats_json(const std::string& path, const ArgsTet& a, const QualityTetResult& r,
@@ -431,7 +399,7 @@ int mesh_tet(const ArgsTet& a, bool& written) {
   const ValidationReport* rep = a.check ? &report : nullptr;
   if (!a.histogram.empty()) {
     make_parent_dirs(a.histogram);
-    write_histogram_csv(a.histogram, result.dihedral_histogram);
+    write_dihedral_histogram_csv(a.histogram, result.dihedral_histogram);
   }
   if (!a.stats_json.empty()) {
     make_parent_dirs(a.stats_json);

@@ -1,12 +1,15 @@
 #include "command_support.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
 
 #include "cli.h"
 #include "gdr/error.h"
+#include "gdr/io.h"
 #include "interrupt.h"
+#include "table.h"
 
 namespace gdr::cli {
 
@@ -88,6 +91,38 @@ int run_interruptible(const std::string& output, const std::function<int(bool& w
 
 double since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// The dihedral histogram in 10-degree groups, from the first group with angles to the last,
+// as TetGen's -V statistics show it.
+void print_dihedral_histogram(std::ostream& out, const std::vector<long long>& bins) {
+  std::vector<long long> groups(18, 0);
+  long long total = 0;
+  for (std::size_t b = 0; b < bins.size(); ++b) {
+    groups[std::min<std::size_t>(b / 10, 17)] += bins[b];
+    total += bins[b];
+  }
+  if (total == 0) return;
+  const auto used = [](long long n) { return n > 0; };
+  const int first = static_cast<int>(std::find_if(groups.begin(), groups.end(), used) - groups.begin());
+  const int last = 17 - static_cast<int>(std::find_if(groups.rbegin(), groups.rend(), used) - groups.rbegin());
+  const long long most = *std::max_element(groups.begin(), groups.end());
+  out << "dihedral angles (all six of every tetrahedron)\n";
+  for (int g = first; g <= last; ++g) {
+    const int width = static_cast<int>(40.0 * groups[g] / most + 0.5);
+    char line[160];
+    std::snprintf(line, sizeof line, "  %3d-%3d deg  %13s  %5.1f%%  %s", 10 * g, 10 * g + 10,
+                  with_commas(groups[g]).c_str(), 100.0 * groups[g] / total,
+                  std::string(groups[g] > 0 ? std::max(width, 1) : 0, '#').c_str());
+    out << line << '\n';
+  }
+}
+
+void write_dihedral_histogram_csv(const std::string& path, const std::vector<long long>& bins) {
+  std::string csv = "angle_lo,angle_hi,count\n";
+  for (std::size_t b = 0; b < bins.size(); ++b)
+    csv += std::to_string(b) + "," + std::to_string(b + 1) + "," + std::to_string(bins[b]) + "\n";
+  io::write_file_atomically(path, csv);
 }
 
 }  // namespace gdr::cli

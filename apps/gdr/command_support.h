@@ -3,6 +3,7 @@
 #pragma once
 #include <chrono>
 #include <functional>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -56,5 +57,11 @@ std::string lower_extension(const std::string& path);
 
 // "gpu (device name)" or "cpu (OpenMP, N threads)", for a run's statistics.
 std::string backend_line(Backend used, const std::string& device_name);
+
+// The dihedral-angle histogram (1-degree bins over [0, 180)) of gdr tet and gdr rdt: in
+// 10-degree groups from the first group with angles to the last, as TetGen's -V statistics
+// show it; and as a CSV file angle_lo,angle_hi,count (written atomically).
+void print_dihedral_histogram(std::ostream& out, const std::vector<long long>& bins);
+void write_dihedral_histogram_csv(const std::string& path, const std::vector<long long>& bins);
 
 }  // namespace gdr::cli
