@@ -266,6 +266,14 @@ void vtkGDRConversion::ToPolyData(const gdr::TriMesh& mesh, double z, vtkPolyDat
     // and the mesh is to be coloured by MinAngle (AddTriangleQuality).
     output->GetPointData()->AddArray(type);
   }
+  if (!mesh.triangle_region.empty() && mesh.triangle_region.size() == mesh.triangles.size())
+  {
+    vtkNew<vtkDoubleArray> region; // Triangle's regional attribute (-A)
+    region->SetName("Region");
+    region->SetNumberOfValues(static_cast<vtkIdType>(mesh.triangle_region.size()));
+    std::copy(mesh.triangle_region.begin(), mesh.triangle_region.end(), region->GetPointer(0));
+    output->GetCellData()->AddArray(region);
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -915,7 +923,25 @@ void vtkGDRConversion::FromPslg(const gdr::Pslg& pslg, vtkPolyData* output)
   }
   AddIsolatedPointVertices(npoints, used, output);
   output->SetLines(FixedSizeCells(pslg.segments, { 0, 1 }));
-  AddSeedArray("HoleSeeds", pslg.holes, output->GetFieldData());
+  vtkFieldData* fd = output->GetFieldData();
+  AddSeedArray("HoleSeeds", pslg.holes, fd);
+  if (!pslg.regions.empty())
+  {
+    std::vector<gdr::Point2> points;
+    vtkNew<vtkDoubleArray> attribute;
+    vtkNew<vtkDoubleArray> maxArea;
+    attribute->SetName("RegionAttribute");
+    maxArea->SetName("RegionMaximumArea");
+    for (const gdr::RegionSeed2& r : pslg.regions)
+    {
+      points.push_back(r.point);
+      attribute->InsertNextValue(r.attribute);
+      maxArea->InsertNextValue(r.max_area);
+    }
+    AddSeedArray("RegionSeeds", points, fd);
+    fd->AddArray(attribute);
+    fd->AddArray(maxArea);
+  }
 }
 
 void vtkGDRConversion::FromSurface(const gdr::Surface& surface, vtkPolyData* output)
@@ -991,14 +1017,35 @@ void vtkGDRConversion::FromTetMesh(const gdr::TetMesh& mesh, vtkUnstructuredGrid
 
 void vtkGDRConversion::AddFileSeeds(vtkPolyData* input, gdr::Pslg& pslg)
 {
-  vtkDataArray* holes = input ? input->GetFieldData()->GetArray("HoleSeeds") : nullptr;
-  if (!holes || holes->GetNumberOfComponents() < 2)
+  vtkFieldData* fd = input ? input->GetFieldData() : nullptr;
+  if (!fd)
   {
     return;
   }
-  for (vtkIdType i = 0; i < holes->GetNumberOfTuples(); ++i)
+  vtkDataArray* holes = fd->GetArray("HoleSeeds");
+  if (holes && holes->GetNumberOfComponents() >= 2)
   {
-    pslg.holes.push_back({ holes->GetComponent(i, 0), holes->GetComponent(i, 1) });
+    for (vtkIdType i = 0; i < holes->GetNumberOfTuples(); ++i)
+    {
+      pslg.holes.push_back({ holes->GetComponent(i, 0), holes->GetComponent(i, 1) });
+    }
+  }
+  // Triangle's regions (.poly region list, or gpudelaunay.refine_2d's regions=).
+  vtkDataArray* regions = fd->GetArray("RegionSeeds");
+  vtkDataArray* attribute = fd->GetArray("RegionAttribute");
+  vtkDataArray* maxArea = fd->GetArray("RegionMaximumArea");
+  if (!regions || regions->GetNumberOfComponents() < 2)
+  {
+    return;
+  }
+  const vtkIdType n = regions->GetNumberOfTuples();
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    gdr::RegionSeed2 seed;
+    seed.point = { regions->GetComponent(i, 0), regions->GetComponent(i, 1) };
+    seed.attribute = attribute && attribute->GetNumberOfTuples() == n ? attribute->GetComponent(i, 0) : 0.0;
+    seed.max_area = maxArea && maxArea->GetNumberOfTuples() == n ? maxArea->GetComponent(i, 0) : 0.0;
+    pslg.regions.push_back(seed);
   }
 }
 

@@ -149,7 +149,7 @@ _CELL_ARRAYS = {"MinAngle": "min_angle", "MaxAngle": "max_angle",
 def refine_2d(points, segments=None, holes=None, min_angle=20.0, max_area=None,
               max_edge=None, switches=None, backend="auto", remove_exterior=False,
               strict=False, max_steiner=None, mode="chew", off_centers=True,
-              cdt_only=False):
+              cdt_only=False, regions=None):
     """Quality constrained Delaunay refinement of a planar straight-line graph.
 
     points: (n, 2) coordinates (an (n, 3) array is read in its x, y). A dict in the style
@@ -157,6 +157,9 @@ def refine_2d(points, segments=None, holes=None, min_angle=20.0, max_area=None,
     segments: (k, 2) point indices (0-based), or None. Crossing segments and points lying
         on segments are split there (a MeshingWarning counts them) unless strict=True.
     holes: (h, 2) seeds of regions to leave empty.
+    regions: (r, 4) rows x, y, attribute, max_area, as Triangle's region list: the region
+        enclosed by segments around (x, y) gets the attribute (result "region") and, when
+        max_area > 0, that area bound.
     min_angle: smallest angle in degrees, at most 34 (0: no angle bound).
     max_area, max_edge, max_steiner: size bounds and the Steiner point cap (None: off).
     switches: Triangle's switch string ("pq30a0.1"); it overrides the options it names,
@@ -167,7 +170,8 @@ def refine_2d(points, segments=None, holes=None, min_angle=20.0, max_area=None,
         -D) and off_centers=False (circumcentres) insert more points.
 
     Returns a MeshResult with points (m, 2), triangles (t, 3), point_type (m,), the cell
-    arrays min_angle, max_angle, radius_edge_ratio, area and is_bad (t,), and stats.
+    arrays min_angle, max_angle, radius_edge_ratio, area and is_bad (t,), region (t,) when
+    regions were given, and stats.
     Raises MeshingError (with the core's status and message) when the input is refused or
     the run fails, ValueError for arrays of the wrong shape or indices out of range.
     """
@@ -178,6 +182,8 @@ def refine_2d(points, segments=None, holes=None, min_angle=20.0, max_area=None,
             segments = points.get("segments")
         if holes is None:
             holes = points.get("holes")
+        if regions is None:
+            regions = points.get("regions")
         points = points["vertices"]
     points = _array(points, "points", (2, 3), np.float64)
     if segments is not None:
@@ -189,8 +195,19 @@ def refine_2d(points, segments=None, holes=None, min_angle=20.0, max_area=None,
     if mode not in ("ruppert", "chew"):
         raise ValueError(f"mode must be 'ruppert' or 'chew', got {mode!r}")
 
+    pslg = _polydata(points, segments)
+    if regions is not None and len(regions):
+        regions = _array(regions, "regions", (4,), np.float64)
+        seeds = np.zeros((len(regions), 3))
+        seeds[:, :2] = regions[:, :2]
+        for name, values, components in (("RegionSeeds", seeds, 3),
+                                          ("RegionAttribute", regions[:, 2], 1),
+                                          ("RegionMaximumArea", regions[:, 3], 1)):
+            array = numpy_support.numpy_to_vtk(np.ascontiguousarray(values), deep=1)
+            array.SetName(name)
+            pslg.GetFieldData().AddArray(array)
     mesher = vtkGPUConstrainedDelaunay2D()
-    mesher.SetInputData(_polydata(points, segments))
+    mesher.SetInputData(pslg)
     if holes is not None and len(holes):
         holes = _array(holes, "holes", (2, 3), np.float64)
         mesher.SetHoleSeedsData(_polydata(holes, None))

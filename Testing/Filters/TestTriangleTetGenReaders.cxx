@@ -15,6 +15,7 @@
 #include "vtkPolyData.h"
 #include "vtkUnstructuredGrid.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -64,6 +65,40 @@ void TestTrianglePoly()
   CHECK(log.Errors.empty());
   const double area = SumOf(mesher->GetOutput()->GetCellData()->GetArray("Area"));
   CHECK(std::abs(area - 12.0) < 1e-9); // 4 x 4 minus the 2 x 2 hole
+}
+
+// Triangle's regions reach the filter through the field data: attributes as the cell
+// array Region, the left region's area bound applied there only.
+void TestTriangleRegions()
+{
+  vtkNew<vtkTriangleTetGenReader> reader;
+  reader->SetFileName((kCliData + "/two_regions.poly").c_str());
+  reader->Update();
+  vtkDataArray* seeds = reader->GetOutput()->GetFieldData()->GetArray("RegionSeeds");
+  CHECK(seeds && seeds->GetNumberOfTuples() == 2 && seeds->GetComponent(1, 0) == 1.5);
+
+  vtkNew<vtkGPUConstrainedDelaunay2D> mesher;
+  EventLog log;
+  log.Watch(mesher);
+  mesher->SetInputConnection(reader->GetOutputPort());
+  mesher->SetBackendToCPU();
+  mesher->Update();
+  CHECK(log.Errors.empty());
+  vtkCellData* cd = mesher->GetOutput()->GetCellData();
+  vtkDataArray* region = cd->GetArray("Region");
+  vtkDataArray* area = cd->GetArray("Area");
+  CHECK(region && area && region->GetNumberOfTuples() == mesher->GetOutput()->GetNumberOfCells());
+  double left = 0, right = 0, largestLeft = 0, largestRight = 0;
+  for (vtkIdType t = 0; region && area && t < region->GetNumberOfTuples(); ++t)
+  {
+    const double r = region->GetComponent(t, 0), a = area->GetComponent(t, 0);
+    CHECK(r == 10 || r == 20);
+    (r == 10 ? left : right) += a;
+    double& largest = r == 10 ? largestLeft : largestRight;
+    largest = std::max(largest, a);
+  }
+  CHECK(std::abs(left - 1.0) < 1e-9 && std::abs(right - 1.0) < 1e-9);
+  CHECK(largestLeft <= 0.001 * (1 + 1e-12) && largestRight > 0.001);
 }
 
 // A .node alone: isolated points become vertex cells.
@@ -195,6 +230,7 @@ int main(int argc, char* argv[])
 {
   const std::map<std::string, std::function<void()>> tests = {
     { "TrianglePoly", TestTrianglePoly },
+    { "TriangleRegions", TestTriangleRegions },
     { "TriangleNode", TestTriangleNode },
     { "TetGenPoly", TestTetGenPoly },
     { "Off", TestOff },

@@ -75,6 +75,26 @@ def test_triangle_style():
     check(len(cdt.points) == 6 and len(cdt.triangles) == 4, "p alone: the CDT")
 
 
+def test_regions():
+    # Triangle's regions: the inner square gets attribute 7 and an area bound of 0.01, the
+    # ring around it attribute 3 and no bound.
+    points, segments, _ = square_with_hole()
+    regions = np.array([[1.5, 1.5, 7, 0.01], [3.0, 3.0, 3, 0]])
+    mesh = gpudelaunay.refine_2d(points, segments, regions=regions, min_angle=20, backend="cpu")
+    smallest, area = angles_and_areas(mesh.points, mesh.triangles)
+    check(mesh.region.shape == (len(mesh.triangles),), "region per triangle")
+    centre = mesh.points[mesh.triangles].mean(axis=1)
+    inside = np.all((centre > 1) & (centre < 2), axis=1)
+    check(np.all(mesh.region[inside] == 7) and np.all(mesh.region[~inside] == 3),
+          "attributes 7 inside, 3 around")
+    check(area[inside].max() <= 0.01 * (1 + 1e-12), "inner bound: %.4f" % area[inside].max())
+    check(area[~inside].max() > 0.01, "no bound around: %.4f" % area[~inside].max())
+    check(abs(area.sum() - 16.0) < 1e-9 and smallest.min() >= 20 - 1e-9, "area 16, angles >= 20")
+    as_dict = gpudelaunay.refine_2d({"vertices": points, "segments": segments, "regions": regions},
+                                    min_angle=20, backend="cpu")
+    check(len(as_dict.triangles) == len(mesh.triangles), "regions from a triangle-style dict")
+
+
 def read_poly(path):
     """Points, segments (0-based) and holes of a Triangle .poly file with its points in it."""
     rows = [line.split("#")[0].split() for line in open(path)]
@@ -145,6 +165,7 @@ def test_warnings_and_errors():
 def main():
     test_arrays_in_and_out()
     test_triangle_style()
+    test_regions()
     test_rules()
     test_warnings_and_errors()
     print("NumPy API: all checks passed")
