@@ -23,8 +23,9 @@ struct Case {
 std::vector<Case> read_cases(const std::string& path);
 bool is_gdr_runner(const std::string& runner);      // gdr-gpu, gdr-cpu (2D, in-process)
 bool is_gdr_tet_runner(const std::string& runner);  // gdr-tet-gpu, gdr-tet-cpu (3D, in-process)
+bool is_gdr_rdt_runner(const std::string& runner);  // gdr-rdt-gpu, gdr-rdt-cpu (3D, in-process)
 bool is_2d_runner(const std::string& runner);       // gdr-*, cgal-mesh2, triangle, gdp2d
-bool is_3d_runner(const std::string& runner);       // gdr-tet-*, tetgen, gqm3d, cgal-mesh3-*
+bool is_3d_runner(const std::string& runner);       // gdr-tet-*, gdr-rdt-*, tetgen, gqm3d, cgal-mesh3-*
 
 // Paths and folders of one gdr_bench run.
 struct Settings {
@@ -147,6 +148,7 @@ std::string tetgen_switches(const Case& c, const TetBounds& b);
 // Tets per unit of max_volume: max_volume = kTetsPerVolumeBound * volume / target_tets.
 extern const double kTetsPerVolumeBound;
 Result run_gdr_tet(const Case& c, Inputs& inputs, const TetBounds& b, bool validate);
+Result run_gdr_rdt(const Case& c, Inputs& inputs, bool validate);
 // The authors' gQM3d (anchors): B only; skipped with a volume or dihedral bound.
 Result run_gqm3d(const Case& c, Inputs& inputs, const Settings& s, const TetBounds& b);
 // The GPU's first 3D call loads the 3D kernels: a tiny mesh keeps that out of the cases.

@@ -27,11 +27,12 @@ std::string Case::text(const std::string& key, const std::string& fallback) cons
 
 bool is_gdr_runner(const std::string& r) { return r == "gdr-gpu" || r == "gdr-cpu"; }
 bool is_gdr_tet_runner(const std::string& r) { return r == "gdr-tet-gpu" || r == "gdr-tet-cpu"; }
+bool is_gdr_rdt_runner(const std::string& r) { return r == "gdr-rdt-gpu" || r == "gdr-rdt-cpu"; }
 bool is_2d_runner(const std::string& r) {
   return is_gdr_runner(r) || r == "cgal-mesh2" || r == "triangle" || r == "gdp2d";
 }
 bool is_3d_runner(const std::string& r) {
-  return is_gdr_tet_runner(r) || r == "tetgen" || r == "gqm3d" || r == "cgal-mesh3-seq" ||
+  return is_gdr_tet_runner(r) || is_gdr_rdt_runner(r) || r == "tetgen" || r == "gqm3d" || r == "cgal-mesh3-seq" ||
          r == "cgal-mesh3-par";
 }
 

@@ -373,18 +373,20 @@ int main(int argc, char** argv) {
         const bool bounded_3d = is_gdr_tet_runner(c.runner) || c.runner == "tetgen" || c.runner == "gqm3d";
         const TetBounds bounds = bounded_3d ? tet_bounds(c, inputs) : TetBounds{};
         if (c.runner == "gdr-gpu" && gpu_state == 0) gpu_state = warm_up_gpu(gpu_problem) ? 1 : -1;
-        if (c.runner == "gdr-tet-gpu" && gpu3d_state == 0)
-          gpu3d_state = warm_up_gpu_3d(gpu3d_problem) ? 1 : -1;
+        const bool gpu3d = c.runner == "gdr-tet-gpu" || c.runner == "gdr-rdt-gpu";
+        if (gpu3d && gpu3d_state == 0) gpu3d_state = warm_up_gpu_3d(gpu3d_problem) ? 1 : -1;
         if (c.runner == "gdr-gpu" && gpu_state < 0) {
           r.status = "skipped";
           r.message = gpu_problem;
-        } else if (c.runner == "gdr-tet-gpu" && gpu3d_state < 0) {
+        } else if (gpu3d && gpu3d_state < 0) {
           r.status = "skipped";
           r.message = gpu3d_problem;
         } else if (is_gdr_runner(c.runner)) {
           r = run_gdr(c, inputs, max_edge, c.number("validate", 1) != 0);
         } else if (is_gdr_tet_runner(c.runner)) {
           r = run_gdr_tet(c, inputs, bounds, c.number("validate", 1) != 0);
+        } else if (is_gdr_rdt_runner(c.runner)) {
+          r = run_gdr_rdt(c, inputs, c.number("validate", 1) != 0);
         } else if (c.runner == "triangle") {
           r = run_triangle(c, inputs, s, max_edge);
         } else if (c.runner == "gdp2d") {

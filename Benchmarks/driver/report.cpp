@@ -77,7 +77,10 @@ void compute_ratios(std::vector<Result>& results) {
     }
     if (const Result* gqm = other("gqm3d")) r.speedup_vs_gqm3d_total = ratio(gqm->total_s, r.total_s);
     // Our CPU path of the same dimension.
-    if (const Result* cpu = other(is_3d_runner(r.c.runner) ? "gdr-tet-cpu" : "gdr-cpu")) {
+    const char* cpu_runner = is_gdr_rdt_runner(r.c.runner) ? "gdr-rdt-cpu"
+                             : is_3d_runner(r.c.runner)    ? "gdr-tet-cpu"
+                                                           : "gdr-cpu";
+    if (const Result* cpu = other(cpu_runner)) {
       r.speedup_vs_cpu_refine = ratio(cpu->refine_s, r.refine_s);
       r.speedup_vs_cpu_total = ratio(cpu->total_s, r.total_s);
     }

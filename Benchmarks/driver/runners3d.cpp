@@ -1,5 +1,6 @@
-// Our 3D runners, gQM3d in-process (gdr::quality_tet_mesh on the GPU or the CPU), and the
-// bounds every 3D runner shares (TetGen's switches are derived from them).
+// Our 3D runners in-process: gQM3d (gdr::quality_tet_mesh) and gDP3d
+// (gdr::restricted_delaunay_3d), each on the GPU or the CPU; and the bounds the constrained
+// 3D runners share (TetGen's switches are derived from them).
 #include <stdlib.h>
 
 #include <algorithm>
@@ -14,6 +15,7 @@
 #include "gdr/backend.h"
 #include "gdr/error.h"
 #include "gdr/qm3d.h"
+#include "gdr/rdt3d.h"
 #include "gdr/validate.h"
 
 namespace gdr_bench {
@@ -212,6 +214,74 @@ Result run_gdr_tet(const Case& c, Inputs& inputs, const TetBounds& b, bool valid
   std::fprintf(stderr, "    validated in %.2f s: %s\n", seconds_since(t0), report.valid ? "valid" : "INVALID");
   r.valid = report.valid ? "yes" : "no";
   if (!report.valid && !report.problems.empty()) r.message += report.problems.front() + " ";
+  return r;
+}
+
+// gDP3d with CGAL Mesh_3's criteria, as the case names them for cgal-mesh3-* (facet_angle,
+// facet_size, facet_distance, cell_radius_edge_ratio, cell_size; absent: our defaults).
+// Elements are the tetrahedra inside the surface; the message gives the surface triangles
+// and their smallest angle. validate=1 checks the surface (closed, oriented, manifold, no
+// self-intersection) and the tetrahedra (positive, bounded by it).
+Result run_gdr_rdt(const Case& c, Inputs& inputs, bool validate) {
+  Result r;
+  const gdr::Surface& surface = inputs.surface(c.input);
+  gdr::RestrictedDelaunayOptions o;
+  o.facet_angle = c.number("facet_angle", o.facet_angle);
+  o.facet_size = c.number("facet_size", o.facet_size);
+  o.facet_distance = c.number("facet_distance", o.facet_distance);
+  o.cell_radius_edge_ratio = c.number("cell_radius_edge_ratio", o.cell_radius_edge_ratio);
+  o.cell_size = c.number("cell_size", o.cell_size);
+  o.backend = c.runner == "gdr-rdt-gpu" ? gdr::Backend::Gpu : gdr::Backend::Cpu;
+  const double timeout = c.number("timeout", 600);
+  const auto start = std::chrono::steady_clock::now();
+  gdr::Callbacks callbacks;
+  callbacks.abort = [&] { return seconds_since(start) > timeout; };
+  gdr::RestrictedDelaunayResult res;
+  try {
+    res = gdr::restricted_delaunay_3d(surface, o, callbacks);
+  } catch (const gdr::Error& e) {
+    if (e.status() != gdr::Status::Aborted) throw;
+    r.status = "timeout";
+    r.message = "stopped after " + number_arg(timeout) + " s";
+    return r;
+  }
+  const gdr::RestrictedDelaunayStats& s = res.stats;
+  r.input_points = s.input_points;
+  r.input_triangles = s.input_triangles;
+  r.points = s.output_points;
+  r.elements = s.output_tets;
+  r.steiner = s.steiner_points;
+  r.cdt_s = s.initial_seconds;  // the initial Delaunay triangulation of the sample
+  r.refine_s = s.refine_seconds;
+  r.total_s = s.total_seconds;
+  r.peak_device_bytes = o.backend == gdr::Backend::Gpu ? double(s.peak_device_bytes) : -1;
+  r.min_quality_deg = s.min_dihedral_deg;
+  r.max_radius_edge = s.max_radius_edge;
+  r.bad_elements = s.bad_tets;
+  r.bad_elements_pct = s.output_tets ? 100.0 * double(s.bad_tets) / double(s.output_tets) : 0.0;
+  r.histogram = res.dihedral_histogram;
+  std::ostringstream msg;
+  msg << s.output_triangles << " surface triangles, smallest facet angle " << s.min_facet_angle_deg
+      << " deg, " << s.bad_facets << " bad facets. ";
+  if (s.stalled) msg << "refinement stalled. ";
+  if (s.steiner_cap_reached) msg << "Steiner cap (" << s.steiner_cap << ") reached. ";
+  r.message = msg.str();
+  r.phases = "";
+  for (const auto& p : s.phases) r.phases += p.name + ":" + std::to_string(p.seconds) + ";";
+  if (!validate) {
+    r.valid = "skipped";
+    return r;
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  const gdr::ValidationReport surf = gdr::validate_surface(res.mesh.points, res.mesh.subfaces, s.closed_input);
+  gdr::ValidateOptions vo;
+  vo.check_conformity = false;
+  const gdr::ValidationReport tets = gdr::validate_tetmesh(res.mesh, nullptr, vo);
+  const bool ok = surf.valid && tets.valid;
+  std::fprintf(stderr, "    validated in %.2f s: %s\n", seconds_since(t0), ok ? "valid" : "INVALID");
+  r.valid = ok ? "yes" : "no";
+  for (const auto* rep : {&surf, &tets})
+    if (!rep->valid && !rep->problems.empty()) r.message += rep->problems.front() + " ";
   return r;
 }
 

@@ -112,4 +112,16 @@ double tet_radius_edge(const Point3& a, const Point3& b, const Point3& c, const 
 void tet_dihedral_angles(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
                          double angles_deg[6]);
 
+// The per-tetrahedron arrays the 3D meshers output, computed in parallel: radius-edge ratio,
+// smallest and largest dihedral angle (degrees), volume; the histogram of all six dihedral
+// angles (1-degree bins over [0, 180)), and their extremes.
+struct TetQualityArrays {
+  std::vector<float> radius_edge, min_dihedral, max_dihedral;
+  std::vector<double> volume;
+  std::vector<long long> dihedral_histogram;
+  double total_volume = 0, min_dihedral_deg = 0, max_dihedral_deg = 0, max_radius_edge = 0;
+};
+TetQualityArrays tet_quality_arrays(const std::vector<Point3>& points,
+                                    const std::vector<std::array<int, 4>>& tets);
+
 }  // namespace gdr

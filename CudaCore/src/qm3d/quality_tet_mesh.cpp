@@ -250,44 +250,19 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
   if (!out.tregion.empty()) tm.tet_region.assign(out.tregion.begin(), out.tregion.end());
 
   // Per-tetrahedron quality and the histogram of all six dihedral angles.
-  result.radius_edge.resize(nt);
-  result.min_dihedral.resize(nt);
-  result.max_dihedral.resize(nt);
-  result.volume.resize(nt);
+  TetQualityArrays q = tet_quality_arrays(tm.points, tm.tets);
+  result.radius_edge = std::move(q.radius_edge);
+  result.min_dihedral = std::move(q.min_dihedral);
+  result.max_dihedral = std::move(q.max_dihedral);
+  result.volume = std::move(q.volume);
+  result.dihedral_histogram = std::move(q.dihedral_histogram);
   result.is_bad.assign(nt, 0);
-  for (const int code : out.bad) result.is_bad[code >> 1] = 1 + (code & 1);
-  result.dihedral_histogram.assign(180, 0);
-  double total = 0, bad_volume = 0, min_d = 180, max_d = 0, max_re = 0;
-#pragma omp parallel
-  {
-    std::vector<long long> hist(180, 0);
-#pragma omp for reduction(+ : total, bad_volume) reduction(min : min_d) reduction(max : max_d, max_re)
-    for (int t = 0; t < nt; ++t) {
-      const auto& v = tm.tets[t];
-      const Point3 &a = tm.points[v[0]], &b = tm.points[v[1]], &c = tm.points[v[2]], &d = tm.points[v[3]];
-      double angles[6];
-      tet_dihedral_angles(a, b, c, d, angles);
-      double lo = 180, hi = 0;
-      for (double x : angles) {
-        lo = std::min(lo, x);
-        hi = std::max(hi, x);
-        ++hist[std::min(179, std::max(0, static_cast<int>(x)))];
-      }
-      const double re = tet_radius_edge(a, b, c, d);
-      const double vol = tet_volume(a, b, c, d);
-      result.radius_edge[t] = static_cast<float>(re);
-      result.min_dihedral[t] = static_cast<float>(lo);
-      result.max_dihedral[t] = static_cast<float>(hi);
-      result.volume[t] = vol;
-      total += vol;
-      if (result.is_bad[t]) bad_volume += vol;
-      min_d = std::min(min_d, lo);
-      max_d = std::max(max_d, hi);
-      if (std::isfinite(re)) max_re = std::max(max_re, re);
-    }
-#pragma omp critical
-    for (int k = 0; k < 180; ++k) result.dihedral_histogram[k] += hist[k];
+  double bad_volume = 0;
+  for (const int code : out.bad) {
+    result.is_bad[code >> 1] = 1 + (code & 1);
+    bad_volume += result.volume[code >> 1];
   }
+  const double total = q.total_volume;
   st.output_points = np;
   st.output_tets = nt;
   st.output_subfaces = static_cast<long long>(nsf);
@@ -296,9 +271,9 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
   for (const int code : out.bad) st.protected_bad_tets += code & 1;
   st.bad_volume_percent = total > 0 ? 100.0 * bad_volume / total : 0.0;
   st.volume = total;
-  st.min_dihedral_deg = nt ? min_d : 0;
-  st.max_dihedral_deg = nt ? max_d : 0;
-  st.max_radius_edge = max_re;
+  st.min_dihedral_deg = q.min_dihedral_deg;
+  st.max_dihedral_deg = q.max_dihedral_deg;
+  st.max_radius_edge = q.max_radius_edge;
   if (st.stalled && cb.warning) {
     char share[32];
     std::snprintf(share, sizeof share, "%.2f%%", st.bad_volume_percent);

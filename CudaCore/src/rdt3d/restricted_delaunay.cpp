@@ -432,16 +432,35 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
     }
     return new_id[v];
   };
-  result.facet_angle_histogram.assign(61, 0);
-  double min_angle = 180, max_size = 0, max_dist = 0, area = 0;
+  // Restricted facets, each from the tetrahedron that owns its face: measured in parallel
+  // (the surface centre is an AABB query), then numbered in tetrahedron order.
+  struct Facet {
+    int v[3];
+    double angle, size, dist, area;
+    unsigned char bad;
+    bool ok;
+  };
+  std::vector<long long> first(static_cast<std::size_t>(m.ntet) + 1, 0);
+#pragma omp parallel for
   for (int t = 0; t < m.ntet; ++t) {
+    int n = 0;
+    for (int f = 0; f < 4; ++f) n += (out.tflag[t] & (rdt3d::kRestricted0 << f)) && rdt3d::owns_face(m, t, f);
+    first[t + 1] = n;
+  }
+  for (int t = 0; t < m.ntet; ++t) first[t + 1] += first[t];
+  std::vector<Facet> facets(static_cast<std::size_t>(first[m.ntet]));
+#pragma omp parallel for schedule(dynamic, 1024)
+  for (int t = 0; t < m.ntet; ++t) {
+    long long k = first[t];
     for (int f = 0; f < 4; ++f) {
       if (!(out.tflag[t] & (rdt3d::kRestricted0 << f)) || !rdt3d::owns_face(m, t, f)) continue;
+      Facet& fc = facets[k++];
       double x[3];
       int tri = -1;
-      if (!rdt3d::surface_centre(m, tree, c, t, f, x, &tri)) continue;
-      int v[3] = {m.tv[4 * t + m3d::face_corner(f, 0)], m.tv[4 * t + m3d::face_corner(f, 1)],
-                  m.tv[4 * t + m3d::face_corner(f, 2)]};
+      fc.ok = rdt3d::surface_centre(m, tree, c, t, f, x, &tri);
+      if (!fc.ok) continue;
+      int* v = fc.v;
+      for (int q = 0; q < 3; ++q) v[q] = m.tv[4 * t + m3d::face_corner(f, q)];
       // Face order is counter-clockwise seen from outside t: keep it when t is the inside.
       const int nb = m.tn[4 * t + f];
       const bool in_t = (out.tflag[t] & rdt3d::kInterior) != 0;
@@ -469,10 +488,11 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
       const Point3 a{out.xyz[3 * v[0]], out.xyz[3 * v[0] + 1], out.xyz[3 * v[0] + 2]};
       const Point3 b{out.xyz[3 * v[1]], out.xyz[3 * v[1] + 1], out.xyz[3 * v[1] + 2]};
       const Point3 d{out.xyz[3 * v[2]], out.xyz[3 * v[2] + 1], out.xyz[3 * v[2] + 2]};
-      double cc[3];
+      double cc[3] = {x[0], x[1], x[2]};  // kept for a degenerate facet
       const double* pa = m3d::pt(m, v[0]);
       m3d::tri_circumcenter(pa, m3d::pt(m, v[1]), m3d::pt(m, v[2]), cc);
-      const double size = std::sqrt(m3d::dist2(x, pa)), dist = std::sqrt(m3d::dist2(x, cc));
+      fc.size = std::sqrt(m3d::dist2(x, pa));
+      fc.dist = std::sqrt(m3d::dist2(x, cc));
       // Angles from the edge lengths (law of cosines), smallest opposite the shortest edge.
       auto len = [](const Point3& p, const Point3& q) {
         return std::sqrt((p.x - q.x) * (p.x - q.x) + (p.y - q.y) * (p.y - q.y) + (p.z - q.z) * (p.z - q.z));
@@ -481,21 +501,28 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
       const double lmin = std::min({la, lb, lc});
       const double o1 = lmin == la ? lb : la, o2 = lmin == lc ? lb : lc;
       const double cosine = std::clamp((o1 * o1 + o2 * o2 - lmin * lmin) / (2 * o1 * o2), -1.0, 1.0);
-      const double angle = std::acos(cosine) * 180 / kPi;
+      fc.angle = std::acos(cosine) * 180 / kPi;
       const double ux[3] = {b.x - a.x, b.y - a.y, b.z - a.z}, vx[3] = {d.x - a.x, d.y - a.y, d.z - a.z};
       double nx[3];
       m3d::cross3(ux, vx, nx);
-      area += 0.5 * std::sqrt(m3d::dot3(nx, nx));
-      tm.subfaces.push_back({use(v[0]), use(v[1]), use(v[2])});
-      result.facet_min_angle.push_back(static_cast<float>(angle));
-      result.facet_size.push_back(size);
-      result.facet_distance.push_back(dist);
-      result.facet_is_bad.push_back(rdt3d::facet_is_bad(m, c, t, f, x) ? 1 : 0);
-      ++result.facet_angle_histogram[std::min(60, std::max(0, static_cast<int>(angle)))];
-      min_angle = std::min(min_angle, angle);
-      max_size = std::max(max_size, size);
-      max_dist = std::max(max_dist, dist);
+      fc.area = 0.5 * std::sqrt(m3d::dot3(nx, nx));
+      fc.bad = rdt3d::facet_is_bad(m, c, t, f, x) ? 1 : 0;
     }
+  }
+  result.facet_angle_histogram.assign(61, 0);
+  double min_angle = 180, max_size = 0, max_dist = 0, area = 0;
+  for (const Facet& fc : facets) {
+    if (!fc.ok) continue;
+    tm.subfaces.push_back({use(fc.v[0]), use(fc.v[1]), use(fc.v[2])});
+    result.facet_min_angle.push_back(static_cast<float>(fc.angle));
+    result.facet_size.push_back(fc.size);
+    result.facet_distance.push_back(fc.dist);
+    result.facet_is_bad.push_back(fc.bad);
+    ++result.facet_angle_histogram[std::min(60, std::max(0, static_cast<int>(fc.angle)))];
+    min_angle = std::min(min_angle, fc.angle);
+    max_size = std::max(max_size, fc.size);
+    max_dist = std::max(max_dist, fc.dist);
+    area += fc.area;
   }
   st.output_triangles = static_cast<long long>(tm.subfaces.size());
   for (unsigned char b : result.facet_is_bad) st.bad_facets += b;
@@ -506,38 +533,33 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
 
   result.dihedral_histogram.assign(180, 0);
   if (st.volume_meshed) {
-    double min_d = 180, max_d = 0, max_re = 0, total = 0;
+    std::vector<int> interior;  // the engine's number of each output tetrahedron
     for (int t = 0; t < m.ntet; ++t) {
       if (!(out.tflag[t] & rdt3d::kInterior)) continue;
       const int* q = m.tv + 4 * t;
       tm.tets.push_back({use(q[0]), use(q[1]), use(q[2]), use(q[3])});
-      const auto& v = tm.tets.back();
-      const Point3 &a = tm.points[v[0]], &b = tm.points[v[1]], &d = tm.points[v[2]], &e = tm.points[v[3]];
-      double angles[6];
-      tet_dihedral_angles(a, b, d, e, angles);
-      double lo_a = 180, hi_a = 0;
-      for (double x : angles) {
-        lo_a = std::min(lo_a, x);
-        hi_a = std::max(hi_a, x);
-        ++result.dihedral_histogram[std::min(179, std::max(0, static_cast<int>(x)))];
-      }
-      const double re = tet_radius_edge(a, b, d, e), vol = tet_volume(a, b, d, e);
-      result.radius_edge.push_back(static_cast<float>(re));
-      result.min_dihedral.push_back(static_cast<float>(lo_a));
-      result.max_dihedral.push_back(static_cast<float>(hi_a));
-      result.volume.push_back(vol);
-      const bool bad = rdt3d::classify_cell(m, c, t, rdt3d::tet_size(m, t)) != rdt3d::kCellGood;
-      result.is_bad.push_back(bad ? 1 : 0);
-      st.bad_tets += bad;
-      total += vol;
-      min_d = std::min(min_d, lo_a);
-      max_d = std::max(max_d, hi_a);
-      if (std::isfinite(re)) max_re = std::max(max_re, re);
+      interior.push_back(t);
     }
-    st.volume = total;
-    st.min_dihedral_deg = tm.tets.empty() ? 0 : min_d;
-    st.max_dihedral_deg = tm.tets.empty() ? 0 : max_d;
-    st.max_radius_edge = max_re;
+    TetQualityArrays q = tet_quality_arrays(tm.points, tm.tets);
+    result.radius_edge = std::move(q.radius_edge);
+    result.min_dihedral = std::move(q.min_dihedral);
+    result.max_dihedral = std::move(q.max_dihedral);
+    result.volume = std::move(q.volume);
+    result.dihedral_histogram = std::move(q.dihedral_histogram);
+    const int n = static_cast<int>(interior.size());
+    result.is_bad.resize(n);
+    long long bad = 0;
+#pragma omp parallel for reduction(+ : bad)
+    for (int i = 0; i < n; ++i) {
+      const int t = interior[i];
+      result.is_bad[i] = rdt3d::classify_cell(m, c, t, rdt3d::tet_size(m, t)) != rdt3d::kCellGood;
+      bad += result.is_bad[i];
+    }
+    st.bad_tets = bad;
+    st.volume = q.total_volume;
+    st.min_dihedral_deg = q.min_dihedral_deg;
+    st.max_dihedral_deg = q.max_dihedral_deg;
+    st.max_radius_edge = q.max_radius_edge;
   }
   // Feature subsegments (each edge once) and the input's feature edges, on output points.
   std::set<std::uint64_t> seen;

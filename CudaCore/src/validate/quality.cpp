@@ -147,6 +147,51 @@ void tet_dihedral_angles(const Point3& a, const Point3& b, const Point3& c, cons
   }
 }
 
+TetQualityArrays tet_quality_arrays(const std::vector<Point3>& points,
+                                    const std::vector<std::array<int, 4>>& tets) {
+  const int nt = static_cast<int>(tets.size());
+  TetQualityArrays q;
+  q.radius_edge.resize(nt);
+  q.min_dihedral.resize(nt);
+  q.max_dihedral.resize(nt);
+  q.volume.resize(nt);
+  q.dihedral_histogram.assign(180, 0);
+  double total = 0, min_d = 180, max_d = 0, max_re = 0;
+#pragma omp parallel
+  {
+    std::vector<long long> hist(180, 0);
+#pragma omp for reduction(+ : total) reduction(min : min_d) reduction(max : max_d, max_re)
+    for (int t = 0; t < nt; ++t) {
+      const auto& v = tets[t];
+      const Point3 &a = points[v[0]], &b = points[v[1]], &c = points[v[2]], &d = points[v[3]];
+      double angles[6];
+      tet_dihedral_angles(a, b, c, d, angles);
+      double lo = 180, hi = 0;
+      for (double x : angles) {
+        lo = std::min(lo, x);
+        hi = std::max(hi, x);
+        ++hist[std::min(179, std::max(0, static_cast<int>(x)))];
+      }
+      const double re = tet_radius_edge(a, b, c, d);
+      q.radius_edge[t] = static_cast<float>(re);
+      q.min_dihedral[t] = static_cast<float>(lo);
+      q.max_dihedral[t] = static_cast<float>(hi);
+      q.volume[t] = tet_volume(a, b, c, d);
+      total += q.volume[t];
+      min_d = std::min(min_d, lo);
+      max_d = std::max(max_d, hi);
+      if (std::isfinite(re)) max_re = std::max(max_re, re);
+    }
+#pragma omp critical
+    for (int k = 0; k < 180; ++k) q.dihedral_histogram[k] += hist[k];
+  }
+  q.total_volume = total;
+  q.min_dihedral_deg = nt ? min_d : 0;
+  q.max_dihedral_deg = nt ? max_d : 0;
+  q.max_radius_edge = max_re;
+  return q;
+}
+
 // Statistics stay finite and agree with the mesher's at any scale: angles and radius-edge
 // ratios on each triangle scaled by a power of two into [-2, 2] (exact, nothing overflows),
 // areas summed at the mesh's own power-of-two scale and scaled back once. A flat triangle
