@@ -20,10 +20,13 @@ std::uint64_t edge_key(int a, int b) {
   return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
 }
 
+// Items are numbered as the files they come from or go to count (Triangle's 0 or 1):
+// mesh items by the mesh's first_index, input items by the input's.
 std::string tri_text(const TriMesh& m, std::size_t t) {
   const auto& v = m.triangles[t];
-  return "triangle " + std::to_string(t) + " (" + std::to_string(v[0]) + ", " +
-         std::to_string(v[1]) + ", " + std::to_string(v[2]) + ")";
+  const long long o = m.first_index;
+  return "triangle " + std::to_string(t + o) + " (" + std::to_string(v[0] + o) + ", " +
+         std::to_string(v[1] + o) + ", " + std::to_string(v[2] + o) + ")";
 }
 
 enum EdgeStatus : std::uint8_t { kEdgeOk = 0, kEdgeNonmanifold, kEdgeOverlap, kEdgeNonDelaunay };
@@ -88,8 +91,8 @@ ValidationReport validate_trimesh(const TriMesh& mesh, const Pslg* input,
   for (std::size_t t = 0; t < T.size(); ++t) {
     if (tri_status[t] == 1) {
       ++r.invalid_indices;
-      problems.add(tri_text(mesh, t) + " has a vertex index out of range [0, " +
-                   std::to_string(nv) + ")");
+      problems.add(tri_text(mesh, t) + " has a vertex index out of range [" + std::to_string(mesh.first_index) +
+                   ", " + std::to_string(nv + mesh.first_index) + ")");
     } else if (tri_status[t] == 2) {
       ++r.inverted_elements;
       problems.add(tri_text(mesh, t) + " is not counter-clockwise");
@@ -124,8 +127,9 @@ ValidationReport validate_trimesh(const TriMesh& mesh, const Pslg* input,
       }
     }
     ++r.invalid_subsegments;
-    problems.add("subsegment " + std::to_string(s) + " (" + std::to_string(a) + ", " +
-                 std::to_string(b) + ") is not an edge of the mesh");
+    const long long o = mesh.first_index;
+    problems.add("subsegment " + std::to_string(s + o) + " (" + std::to_string(a + o) + ", " +
+                 std::to_string(b + o) + ") is not an edge of the mesh");
   }
   std::sort(constrained.begin(), constrained.end());
 
@@ -158,8 +162,8 @@ ValidationReport validate_trimesh(const TriMesh& mesh, const Pslg* input,
     if (edge_status[i] == kEdgeOk) continue;
     const int k = static_cast<int>(i % 3);
     const auto& tv = T[i / 3];
-    const std::string edge = "edge (" + std::to_string(tv[(k + 1) % 3]) + ", " +
-                             std::to_string(tv[(k + 2) % 3]) + ")";
+    const std::string edge = "edge (" + std::to_string(tv[(k + 1) % 3] + mesh.first_index) + ", " +
+                             std::to_string(tv[(k + 2) % 3] + mesh.first_index) + ")";
     if (edge_status[i] == kEdgeNonDelaunay) {
       ++r.non_delaunay;
       problems.add(edge + " of " + tri_text(mesh, i / 3) +
@@ -178,7 +182,7 @@ ValidationReport validate_trimesh(const TriMesh& mesh, const Pslg* input,
     for (std::size_t i = 0; i < input->points.size(); ++i) {
       if (representative[i] != static_cast<int>(i) || found[i] >= 0) continue;
       ++r.missing_points;
-      problems.add("input point " + std::to_string(i) + " (" + std::to_string(input->points[i].x) +
+      problems.add("input point " + std::to_string(i + input->first_index) + " (" + std::to_string(input->points[i].x) +
                    ", " + std::to_string(input->points[i].y) + ") is not a mesh vertex");
     }
     const validate::SubsegmentGraph graph(nv, mesh.subsegments);
@@ -220,8 +224,9 @@ ValidationReport validate_trimesh(const TriMesh& mesh, const Pslg* input,
     for (std::size_t s = 0; s < S.size(); ++s) {
       if (seg_ok[s]) continue;
       ++r.missing_segments;
-      problems.add("input segment " + std::to_string(s) + " (" + std::to_string(S[s][0]) + ", " +
-                   std::to_string(S[s][1]) + ") is not recovered as a chain of subsegments");
+      const long long o = input->first_index;
+      problems.add("input segment " + std::to_string(s + o) + " (" + std::to_string(S[s][0] + o) + ", " +
+                   std::to_string(S[s][1] + o) + ") is not recovered as a chain of subsegments");
     }
   }
 

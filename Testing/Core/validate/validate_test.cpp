@@ -87,6 +87,31 @@ TEST(ValidateTriMesh, MissingSegment) {
   EXPECT_EQ(r.missing_points, 0u);
 }
 
+// Messages number items as the files do: a 1-based .poly's segment 2 is "input segment 2",
+// and a mesh written 1-based names its vertices from 1.
+TEST(ValidateTriMesh, MessagesNumberItemsAsTheFilesDo) {
+  TriMesh m = grid();
+  m.subsegments.erase(m.subsegments.begin() + 2);
+  m.subsegment_source.erase(m.subsegment_source.begin() + 2);
+  m.subsegments.push_back({0, 8});
+  m.subsegment_source.push_back(-1);
+  Pslg p = square();
+  auto problems = [&] {
+    std::string all;
+    for (const std::string& text : validate_trimesh(m, &p).problems) all += text + "\n";
+    return all;
+  };
+  const std::string zero = problems();
+  p.first_index = 1;
+  m.first_index = 1;
+  const std::string one = problems();
+  const std::string seg = std::to_string(p.segments[1][0]) + ", " + std::to_string(p.segments[1][1]);
+  const std::string seg1 = std::to_string(p.segments[1][0] + 1) + ", " + std::to_string(p.segments[1][1] + 1);
+  EXPECT_NE(zero.find("input segment 1 (" + seg + ")"), std::string::npos) << zero;
+  EXPECT_NE(one.find("input segment 2 (" + seg1 + ")"), std::string::npos) << one;
+  EXPECT_NE(one.find("(1, 9) is not an edge"), std::string::npos) << one;
+}
+
 TEST(ValidateTriMesh, SubsegmentThatIsNotAnEdge) {
   TriMesh m = grid();
   m.subsegments.push_back({0, 8});
