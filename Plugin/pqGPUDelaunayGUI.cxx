@@ -1,6 +1,7 @@
 #include "pqGPUDelaunayGUI.h"
 
 #include "pqApplicationCore.h"
+#include "pqObjectBuilder.h"
 #include "pqCoreUtilities.h"
 #include "pqDataRepresentation.h"
 #include "pqOutputPort.h"
@@ -20,6 +21,7 @@
 #include "vtkSMProxy.h"
 #include "vtkSMSettings.h"
 #include "vtkSMSourceProxy.h"
+#include "vtkSMViewLayoutProxy.h"
 #include "vtkSMViewProxy.h"
 
 #include <QApplication>
@@ -72,6 +74,64 @@ const HistogramChart* FindHistogramChart(const char* proxy, int port)
     }
   }
   return nullptr;
+}
+
+// The oldest bar chart view made before `created` that shows one of the meshing filters'
+// histograms, if any.
+pqView* ExistingHistogramView(pqView* created)
+{
+  pqServerManagerModel* model = pqApplicationCore::instance()->getServerManagerModel();
+  pqView* oldest = nullptr;
+  for (pqView* view : model->findItems<pqView*>())
+  {
+    const vtkTypeUInt32 id = view->getProxy()->GetGlobalID();
+    if (view->getViewType() != "XYBarChartView" || id >= created->getProxy()->GetGlobalID() ||
+      (oldest && id >= oldest->getProxy()->GetGlobalID()))
+    {
+      continue;
+    }
+    for (pqRepresentation* r : view->getRepresentations())
+    {
+      auto* data = qobject_cast<pqDataRepresentation*>(r);
+      pqOutputPort* port = data ? data->getOutputPortFromInput() : nullptr;
+      if (port && FindHistogramChart(port->getSource()->getProxy()->GetXMLName(), port->getPortNumber()))
+      {
+        oldest = view;
+        break;
+      }
+    }
+  }
+  return oldest;
+}
+
+// Each new filter's histogram would open one more bar chart view (the proxy's view hint):
+// show it in the chart that is already there instead, the earlier histograms hidden (their
+// eye icons bring them back), and close the new view.
+bool MoveToExistingChart(pqDataRepresentation* histogram, pqOutputPort* port, pqView* created)
+{
+  pqView* existing = ExistingHistogramView(created);
+  if (!existing || created->getNumberOfRepresentations() != 1)
+  {
+    return false;
+  }
+  histogram->setVisible(false);
+  if (vtkSMViewLayoutProxy* layout = vtkSMViewLayoutProxy::FindLayout(created->getViewProxy()))
+  {
+    const int cell = layout->RemoveView(created->getViewProxy());
+    if (cell >= 0)
+    {
+      layout->Collapse(cell);
+    }
+  }
+  pqApplicationCore::instance()->getObjectBuilder()->destroy(created); // and the histogram
+  for (pqRepresentation* r : existing->getRepresentations())
+  {
+    r->setVisible(false);
+  }
+  vtkNew<vtkSMParaViewPipelineControllerWithRendering> controller;
+  controller->Show(port->getSource()->getSourceProxy(), port->getPortNumber(), existing->getViewProxy());
+  existing->render();
+  return true;
 }
 
 // A restricted Delaunay run without tetrahedra (an open surface, or Mesh Volume off) has its
@@ -300,9 +360,9 @@ void pqGPUDelaunayGUI::onRepresentationAdded(pqRepresentation* representation)
         return;
       }
       const HistogramChart* histogram = FindHistogramChart(name, port->getPortNumber());
-      if (!histogram || view->getViewType() != "XYBarChartView")
+      if (!histogram || view->getViewType() != "XYBarChartView" || MoveToExistingChart(data, port, view))
       {
-        return;
+        return; // a moved histogram is styled when its new representation is added
       }
       // The legend names the counted things instead of the column names.
       vtkSMPropertyHelper label(data->getProxy(), "SeriesLabel");
