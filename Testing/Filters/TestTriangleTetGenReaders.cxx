@@ -13,6 +13,7 @@
 #include "vtkFieldData.h"
 #include "vtkNew.h"
 #include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
 #include "vtkUnstructuredGrid.h"
 
 #include <algorithm>
@@ -38,6 +39,22 @@ double SumOf(vtkDataArray* a)
   return s;
 }
 
+// The 2D filter on a reader's output, on the CPU, with no error reported.
+vtkSmartPointer<vtkGPUConstrainedDelaunay2D> Mesh2D(vtkAlgorithm* reader, bool removeExterior)
+{
+  auto mesher = vtkSmartPointer<vtkGPUConstrainedDelaunay2D>::New();
+  EventLog log;
+  log.Watch(mesher);
+  mesher->SetInputConnection(reader->GetOutputPort());
+  mesher->SetBackendToCPU();
+  mesher->SetRemoveExterior(removeExterior);
+  mesher->Update();
+  CHECK(log.Errors.empty());
+  mesher->RemoveObservers(vtkCommand::ErrorEvent); // they point to this function's log
+  mesher->RemoveObservers(vtkCommand::WarningEvent);
+  return mesher;
+}
+
 // Triangle .poly: segments as lines, the holes section as HoleSeeds, and the 2D filter
 // honours the hole without a HoleSeeds input.
 void TestTrianglePoly()
@@ -55,14 +72,7 @@ void TestTrianglePoly()
   vtkDataArray* holes = pslg->GetFieldData()->GetArray("HoleSeeds");
   CHECK(holes && holes->GetNumberOfTuples() == 1 && holes->GetComponent(0, 0) == 2.0);
 
-  vtkNew<vtkGPUConstrainedDelaunay2D> mesher;
-  EventLog log;
-  log.Watch(mesher);
-  mesher->SetInputConnection(reader->GetOutputPort());
-  mesher->SetBackendToCPU();
-  mesher->RemoveExteriorOn();
-  mesher->Update();
-  CHECK(log.Errors.empty());
+  vtkSmartPointer<vtkGPUConstrainedDelaunay2D> mesher = Mesh2D(reader, true);
   const double area = SumOf(mesher->GetOutput()->GetCellData()->GetArray("Area"));
   CHECK(std::abs(area - 12.0) < 1e-9); // 4 x 4 minus the 2 x 2 hole
 }
@@ -77,13 +87,7 @@ void TestTriangleRegions()
   vtkDataArray* seeds = reader->GetOutput()->GetFieldData()->GetArray("RegionSeeds");
   CHECK(seeds && seeds->GetNumberOfTuples() == 2 && seeds->GetComponent(1, 0) == 1.5);
 
-  vtkNew<vtkGPUConstrainedDelaunay2D> mesher;
-  EventLog log;
-  log.Watch(mesher);
-  mesher->SetInputConnection(reader->GetOutputPort());
-  mesher->SetBackendToCPU();
-  mesher->Update();
-  CHECK(log.Errors.empty());
+  vtkSmartPointer<vtkGPUConstrainedDelaunay2D> mesher = Mesh2D(reader, false);
   vtkCellData* cd = mesher->GetOutput()->GetCellData();
   vtkDataArray* region = cd->GetArray("Region");
   vtkDataArray* area = cd->GetArray("Area");
