@@ -105,8 +105,8 @@ pqView* ExistingHistogramView(pqView* created)
 }
 
 // Each new filter's histogram would open one more bar chart view (the proxy's view hint):
-// show it in the chart that is already there instead, the earlier histograms hidden (their
-// eye icons bring them back), and close the new view.
+// show it in the chart that is already there instead, beside the earlier ones (their eye
+// icons hide them), and close the new view.
 bool MoveToExistingChart(pqDataRepresentation* histogram, pqOutputPort* port, pqView* created)
 {
   pqView* existing = ExistingHistogramView(created);
@@ -124,10 +124,6 @@ bool MoveToExistingChart(pqDataRepresentation* histogram, pqOutputPort* port, pq
     }
   }
   pqApplicationCore::instance()->getObjectBuilder()->destroy(created); // and the histogram
-  for (pqRepresentation* r : existing->getRepresentations())
-  {
-    r->setVisible(false);
-  }
   vtkNew<vtkSMParaViewPipelineControllerWithRendering> controller;
   controller->Show(port->getSource()->getSourceProxy(), port->getPortNumber(), existing->getViewProxy());
   existing->render();
@@ -378,6 +374,34 @@ void pqGPUDelaunayGUI::onRepresentationAdded(pqRepresentation* representation)
           port->getSource()->getOutputPort(0)->getDataInformation()->GetNumberOfCells() > 0;
         vtkSMPropertyHelper(data->getProxy(), "SeriesVisibility")
           .SetStatus(histogram->Series[tets ? 1 : 0].first, 0);
+      }
+      // Several runs in one chart (MoveToExistingChart): each named in the legend by its
+      // filter, the newest in a colour of its own.
+      std::vector<pqDataRepresentation*> runs;
+      for (pqRepresentation* r : view->getRepresentations())
+      {
+        auto* other = qobject_cast<pqDataRepresentation*>(r);
+        pqOutputPort* at = other ? other->getOutputPortFromInput() : nullptr;
+        if (at && FindHistogramChart(at->getSource()->getProxy()->GetXMLName(), at->getPortNumber()))
+        {
+          runs.push_back(other);
+        }
+      }
+      if (runs.size() > 1)
+      {
+        for (pqDataRepresentation* run : runs)
+        {
+          const QString prefix = run->getOutputPortFromInput()->getSource()->getSMName() + ": ";
+          vtkSMPropertyHelper(run->getProxy(), "SeriesLabelPrefix").Set(prefix.toUtf8().constData());
+          run->getProxy()->UpdateVTKObjects();
+        }
+        static double palette[4][3] = { { 0.89, 0.10, 0.11 }, { 0.22, 0.49, 0.72 },
+          { 0.30, 0.69, 0.29 }, { 0.60, 0.31, 0.64 } };
+        for (const auto& series : histogram->Series)
+        {
+          vtkSMPropertyHelper(data->getProxy(), "SeriesColor")
+            .SetStatus(series.first, palette[(runs.size() - 1) % 4], 3);
+        }
       }
       data->getProxy()->UpdateVTKObjects();
       vtkSMProxy* chart = view->getProxy();

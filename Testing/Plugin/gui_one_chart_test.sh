@@ -3,8 +3,9 @@
 # `xvfb-run -s "-screen 0 1600x1000x24"`:
 #   gui_one_chart_test.sh PARAVIEW PLUGIN PLATE OUTDIR
 # gui_one_chart.py shows each filter's histogram in a new bar chart view, as Apply does; this
-# driver checks, from what it logs, that the second view was closed and its histogram shown
-# in the first chart alone, and saves a screenshot (OUTDIR/gui_one_chart.png).
+# driver checks, from what it logs, that the second view was closed and both histograms shown
+# in the first chart, each named by its filter in the legend, and saves a screenshot
+# (OUTDIR/gui_one_chart.png).
 paraview=$1; plugin=$2; plate=$3; out=$4
 here=$(cd "$(dirname "$0")" && pwd)
 mkdir -p "$out"
@@ -12,7 +13,7 @@ mkdir -p "$out"
 export GDR_PLUGIN=$plugin GDR_PLATE=$plate
 start_paraview "$here/gui_one_chart.py" gui_one_chart
 wait_for ready 120 || fail "the GUI did not start"
-wait_for "charts=1 representations=2 shown=1" 30 ||
+wait_for "charts=1 representations=2 shown=2 prefixes=GPUConstrainedDelaunay2D1: ,GPUConstrainedDelaunay2D2: " 30 ||
   fail "the second histogram was not moved into the first chart"
 sleep 8                                   # the window and the welcome dialog
 xdotool mousemove 893 576 click 1; sleep 2                         # close the dialog
