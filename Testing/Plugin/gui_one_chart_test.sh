@@ -15,8 +15,5 @@ start_paraview "$here/gui_one_chart.py" gui_one_chart
 wait_for ready 120 || fail "the GUI did not start"
 wait_for "charts=1 representations=2 shown=2 prefixes=GPUConstrainedDelaunay2D1: ,GPUConstrainedDelaunay2D2: " 30 ||
   fail "the second histogram was not moved into the first chart"
-sleep 8                                   # the window and the welcome dialog
-xdotool mousemove 893 576 click 1; sleep 2                         # close the dialog
-import -window root "$out/gui_one_chart.png"
-kill $pv
+screenshot_and_stop gui_one_chart
 echo "GUI one chart passed"

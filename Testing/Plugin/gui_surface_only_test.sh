@@ -18,8 +18,5 @@ wait_for "tets visible=0 surface visible=1 representation=Surface With Edges" 30
   fail "the surface was not shown instead of the empty tetrahedra"
 wait_for "series shown=FacetAngleCount label=smallest angle per surface triangle title=Angle histograms" 30 ||
   fail "the chart does not show the facet angles alone"
-sleep 8                                   # the window and the welcome dialog
-xdotool mousemove 893 576 click 1; sleep 2                         # close the dialog
-import -window root "$out/gui_surface_only.png"
-kill $pv
+screenshot_and_stop gui_surface_only
 echo "GUI surface-only display passed"

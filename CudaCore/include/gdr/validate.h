@@ -16,6 +16,7 @@
 #include <array>
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "gdr/pslg.h"
@@ -123,5 +124,14 @@ struct TetQualityArrays {
 };
 TetQualityArrays tet_quality_arrays(const std::vector<Point3>& points,
                                     const std::vector<std::array<int, 4>>& tets);
+// Moves the arrays into a mesher's result (QualityTetResult, RestrictedDelaunayResult).
+template <class MesherResult>
+void move_tet_quality(TetQualityArrays& q, MesherResult& result) {
+  result.radius_edge = std::move(q.radius_edge);
+  result.min_dihedral = std::move(q.min_dihedral);
+  result.max_dihedral = std::move(q.max_dihedral);
+  result.volume = std::move(q.volume);
+  result.dihedral_histogram = std::move(q.dihedral_histogram);
+}
 
 }  // namespace gdr

@@ -251,11 +251,7 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
 
   // Per-tetrahedron quality and the histogram of all six dihedral angles.
   TetQualityArrays q = tet_quality_arrays(tm.points, tm.tets);
-  result.radius_edge = std::move(q.radius_edge);
-  result.min_dihedral = std::move(q.min_dihedral);
-  result.max_dihedral = std::move(q.max_dihedral);
-  result.volume = std::move(q.volume);
-  result.dihedral_histogram = std::move(q.dihedral_histogram);
+  move_tet_quality(q, result);
   result.is_bad.assign(nt, 0);
   double bad_volume = 0;
   for (const int code : out.bad) {

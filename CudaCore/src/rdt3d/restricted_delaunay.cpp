@@ -541,11 +541,7 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
       interior.push_back(t);
     }
     TetQualityArrays q = tet_quality_arrays(tm.points, tm.tets);
-    result.radius_edge = std::move(q.radius_edge);
-    result.min_dihedral = std::move(q.min_dihedral);
-    result.max_dihedral = std::move(q.max_dihedral);
-    result.volume = std::move(q.volume);
-    result.dihedral_histogram = std::move(q.dihedral_histogram);
+    move_tet_quality(q, result);
     const int n = static_cast<int>(interior.size());
     result.is_bad.resize(n);
     long long bad = 0;
