@@ -65,18 +65,33 @@ vtkSmartPointer<vtkCellArray> FixedSizeCells(
   array->SetData(offsets, connectivity);
   return array;
 }
+
+// `values` as an array of `components` components added to `data` (cell or point data).
+template <typename ArrayT, typename ValueT>
+void AddArray(vtkDataSetAttributes* data, const char* name, const std::vector<ValueT>& values,
+  int components = 1)
+{
+  vtkNew<ArrayT> array;
+  array->SetName(name);
+  array->SetNumberOfComponents(components);
+  array->SetNumberOfValues(static_cast<vtkIdType>(values.size()));
+  std::copy(values.begin(), values.end(), array->GetPointer(0));
+  data->AddArray(array);
+}
 }
 
 namespace
 {
-// Maps VTK point ids to PSLG vertex indices, adding points on first use.
+// Maps VTK point ids to PSLG vertex indices, adding points on first use. With
+// `segmentMarkers` (a cell array), each new segment takes the marker of its cell.
 class PointMap
 {
 public:
-  PointMap(vtkPoints* points, gdr::Pslg& pslg)
+  PointMap(vtkPoints* points, gdr::Pslg& pslg, vtkDataArray* segmentMarkers)
     : Points(points)
     , Pslg(pslg)
     , Index(points->GetNumberOfPoints(), -1)
+    , SegmentMarkers(segmentMarkers)
   {
   }
 
@@ -87,6 +102,7 @@ public:
       double p[3];
       this->Points->GetPoint(id, p);
       this->Index[id] = static_cast<int>(this->Pslg.points.size());
+      this->Ids.push_back(id);
       this->Pslg.points.push_back({ p[0], p[1] });
       this->ZMin = std::min(this->ZMin, p[2]);
       this->ZMax = std::max(this->ZMax, p[2]);
@@ -98,7 +114,7 @@ public:
     return this->Index[id];
   }
 
-  void Segment(vtkIdType a, vtkIdType b)
+  void Segment(vtkIdType cell, vtkIdType a, vtkIdType b)
   {
     if (a == b)
     {
@@ -113,12 +129,19 @@ public:
     if (this->Seen.insert(std::minmax(ia, ib)).second)
     {
       this->Pslg.segments.push_back({ ia, ib });
+      if (this->SegmentMarkers)
+      {
+        this->Pslg.segment_markers.push_back(
+          static_cast<int>(std::lround(this->SegmentMarkers->GetComponent(cell, 0))));
+      }
     }
   }
 
   vtkPoints* Points;
   gdr::Pslg& Pslg;
   std::vector<int> Index;
+  std::vector<vtkIdType> Ids; // the VTK id of each PSLG point
+  vtkDataArray* SegmentMarkers;
   std::set<std::pair<int, int>> Seen;
   double Z = 0.0;
   double ZMin = VTK_DOUBLE_MAX;
@@ -138,12 +161,22 @@ void vtkGDRConversion::ToPslg(
     return;
   }
 
-  PointMap map(input->GetPoints(), pslg);
+  // Triangle's boundary markers and point attributes, under the names the reader and gdr 2d
+  // give them (any numeric type; markers are rounded to integers).
+  vtkDataArray* segmentMarkers = input->GetCellData()->GetArray("BoundaryMarker");
+  if (segmentMarkers &&
+    (segmentMarkers->GetNumberOfComponents() != 1 ||
+      segmentMarkers->GetNumberOfTuples() != input->GetNumberOfCells()))
+  {
+    segmentMarkers = nullptr;
+  }
+  PointMap map(input->GetPoints(), pslg, segmentMarkers);
   vtkIdType npts;
   const vtkIdType* ids;
+  vtkIdType cell = 0; // polydata cell ids count vertices, lines, polygons, strips in turn
 
   vtkCellArray* verts = input->GetVerts();
-  for (verts->InitTraversal(); verts->GetNextCell(npts, ids);)
+  for (verts->InitTraversal(); verts->GetNextCell(npts, ids); ++cell)
   {
     for (vtkIdType i = 0; i < npts; ++i)
     {
@@ -151,7 +184,7 @@ void vtkGDRConversion::ToPslg(
     }
   }
   vtkCellArray* lines = input->GetLines();
-  for (lines->InitTraversal(); lines->GetNextCell(npts, ids);)
+  for (lines->InitTraversal(); lines->GetNextCell(npts, ids); ++cell)
   {
     if (npts == 1)
     {
@@ -159,17 +192,17 @@ void vtkGDRConversion::ToPslg(
     }
     for (vtkIdType i = 0; i + 1 < npts; ++i)
     {
-      map.Segment(ids[i], ids[i + 1]);
+      map.Segment(cell, ids[i], ids[i + 1]);
     }
   }
   std::vector<std::vector<int>> rings;  // the polygons, for holes by orientation
   vtkCellArray* polys = input->GetPolys();
-  for (polys->InitTraversal(); polys->GetNextCell(npts, ids);)
+  for (polys->InitTraversal(); polys->GetNextCell(npts, ids); ++cell)
   {
     rings.emplace_back();
     for (vtkIdType i = 0; i < npts; ++i)
     {
-      map.Segment(ids[i], ids[(i + 1) % npts]);
+      map.Segment(cell, ids[i], ids[(i + 1) % npts]);
       const int v = map.Use(ids[i]);
       if (rings.back().empty() || (rings.back().back() != v && rings.back().front() != v))
       {
@@ -178,13 +211,13 @@ void vtkGDRConversion::ToPslg(
     }
   }
   vtkCellArray* strips = input->GetStrips();
-  for (strips->InitTraversal(); strips->GetNextCell(npts, ids);)
+  for (strips->InitTraversal(); strips->GetNextCell(npts, ids); ++cell)
   {
     for (vtkIdType i = 0; i + 2 < npts; ++i)
     {
-      map.Segment(ids[i], ids[i + 1]);
-      map.Segment(ids[i + 1], ids[i + 2]);
-      map.Segment(ids[i + 2], ids[i]);
+      map.Segment(cell, ids[i], ids[i + 1]);
+      map.Segment(cell, ids[i + 1], ids[i + 2]);
+      map.Segment(cell, ids[i + 2], ids[i]);
     }
   }
   if (input->GetNumberOfCells() == 0)
@@ -192,6 +225,27 @@ void vtkGDRConversion::ToPslg(
     for (vtkIdType id = 0; id < input->GetNumberOfPoints(); ++id)
     {
       map.Use(id);
+    }
+  }
+
+  vtkPointData* pd = input->GetPointData();
+  vtkDataArray* pointMarkers = pd->GetArray("BoundaryMarker");
+  if (pointMarkers && pointMarkers->GetNumberOfComponents() == 1)
+  {
+    for (const vtkIdType id : map.Ids)
+    {
+      pslg.point_markers.push_back(static_cast<int>(std::lround(pointMarkers->GetComponent(id, 0))));
+    }
+  }
+  if (vtkDataArray* attributes = pd->GetArray("PointAttributes"))
+  {
+    pslg.point_attribute_count = attributes->GetNumberOfComponents();
+    for (const vtkIdType id : map.Ids)
+    {
+      for (int c = 0; c < pslg.point_attribute_count; ++c)
+      {
+        pslg.point_attributes.push_back(attributes->GetComponent(id, c));
+      }
     }
   }
 
@@ -268,11 +322,33 @@ void vtkGDRConversion::ToPolyData(const gdr::TriMesh& mesh, double z, vtkPolyDat
   }
   if (!mesh.triangle_region.empty() && mesh.triangle_region.size() == mesh.triangles.size())
   {
-    vtkNew<vtkDoubleArray> region; // Triangle's regional attribute (-A)
-    region->SetName("Region");
-    region->SetNumberOfValues(static_cast<vtkIdType>(mesh.triangle_region.size()));
-    std::copy(mesh.triangle_region.begin(), mesh.triangle_region.end(), region->GetPointer(0));
-    output->GetCellData()->AddArray(region);
+    // Triangle's regional attribute (-A)
+    AddArray<vtkDoubleArray>(output->GetCellData(), "Region", mesh.triangle_region);
+  }
+  // What Triangle's .node carries, as the core carried it from the input.
+  if (static_cast<vtkIdType>(mesh.point_markers.size()) == npoints)
+  {
+    AddArray<vtkIntArray>(output->GetPointData(), "BoundaryMarker", mesh.point_markers);
+  }
+  const int na = mesh.point_attribute_count;
+  if (na > 0 && mesh.point_attributes.size() == mesh.points.size() * na)
+  {
+    AddArray<vtkDoubleArray>(output->GetPointData(), "PointAttributes", mesh.point_attributes, na);
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkGDRConversion::ToSubsegments(
+  const gdr::TriMesh& mesh, vtkPolyData* triangles, vtkPolyData* output)
+{
+  output->Initialize();
+  output->SetPoints(triangles->GetPoints());
+  output->SetLines(FixedSizeCells(mesh.subsegments, { 0, 1 }));
+  output->GetPointData()->PassData(triangles->GetPointData());
+  if (mesh.subsegment_markers.size() == mesh.subsegments.size())
+  {
+    AddArray<vtkIntArray>(output->GetCellData(), "BoundaryMarker", mesh.subsegment_markers);
+    output->GetCellData()->SetActiveScalars("BoundaryMarker");
   }
 }
 
@@ -747,16 +823,6 @@ void vtkGDRConversion::AddSeeds(vtkDataSet* seeds, gdr::Surface& surface)
 //------------------------------------------------------------------------------
 namespace
 {
-template <typename ArrayT, typename ValueT>
-void AddCellArray(vtkCellData* cd, const char* name, const std::vector<ValueT>& values)
-{
-  vtkNew<ArrayT> array;
-  array->SetName(name);
-  array->SetNumberOfValues(static_cast<vtkIdType>(values.size()));
-  std::copy(values.begin(), values.end(), array->GetPointer(0));
-  cd->AddArray(array);
-}
-
 // The points, tetrahedra, PointType and quality arrays of a 3D mesher's result (the
 // constrained and the restricted mesher measure their tetrahedra alike).
 template <typename Result>
@@ -793,11 +859,11 @@ void TetQualityGrid(const Result& result, vtkUnstructuredGrid* output)
   }
 
   vtkCellData* cd = output->GetCellData();
-  AddCellArray<vtkFloatArray>(cd, "RadiusEdgeRatio", result.radius_edge);
-  AddCellArray<vtkFloatArray>(cd, "MinDihedralAngle", result.min_dihedral);
-  AddCellArray<vtkFloatArray>(cd, "MaxDihedralAngle", result.max_dihedral);
-  AddCellArray<vtkDoubleArray>(cd, "Volume", result.volume);
-  AddCellArray<vtkUnsignedCharArray>(cd, "IsBad", result.is_bad);
+  AddArray<vtkFloatArray>(cd, "RadiusEdgeRatio", result.radius_edge);
+  AddArray<vtkFloatArray>(cd, "MinDihedralAngle", result.min_dihedral);
+  AddArray<vtkFloatArray>(cd, "MaxDihedralAngle", result.max_dihedral);
+  AddArray<vtkDoubleArray>(cd, "Volume", result.volume);
+  AddArray<vtkUnsignedCharArray>(cd, "IsBad", result.is_bad);
   cd->SetActiveScalars("MinDihedralAngle");
 }
 }
@@ -807,7 +873,7 @@ void vtkGDRConversion::ToUnstructuredGrid(
 {
   TetQualityGrid(result, output);
   const gdr::TetMesh& mesh = result.mesh;
-  AddCellArray<vtkIntArray>(output->GetCellData(), "Region",
+  AddArray<vtkIntArray>(output->GetCellData(), "Region",
     mesh.tet_region.empty() ? std::vector<int>(mesh.tets.size(), 0) : mesh.tet_region);
 }
 
@@ -821,10 +887,10 @@ void vtkGDRConversion::ToRestrictedMesh(
   surface->SetPolys(FixedSizeCells(result.mesh.subfaces, { 0, 1, 2 }));
   surface->GetPointData()->PassData(tets->GetPointData());
   vtkCellData* cd = surface->GetCellData();
-  AddCellArray<vtkFloatArray>(cd, "MinAngle", result.facet_min_angle);
-  AddCellArray<vtkDoubleArray>(cd, "Size", result.facet_size);
-  AddCellArray<vtkDoubleArray>(cd, "Distance", result.facet_distance);
-  AddCellArray<vtkUnsignedCharArray>(cd, "IsBad", result.facet_is_bad);
+  AddArray<vtkFloatArray>(cd, "MinAngle", result.facet_min_angle);
+  AddArray<vtkDoubleArray>(cd, "Size", result.facet_size);
+  AddArray<vtkDoubleArray>(cd, "Distance", result.facet_distance);
+  AddArray<vtkUnsignedCharArray>(cd, "IsBad", result.facet_is_bad);
   cd->SetActiveScalars("MinAngle");
 }
 
@@ -837,7 +903,7 @@ void vtkGDRConversion::ToSubfaces(
   output->SetPoints(tets->GetPoints());
   output->SetPolys(triangles);
   output->GetPointData()->PassData(tets->GetPointData());
-  AddCellArray<vtkIntArray>(output->GetCellData(), "FacetId",
+  AddArray<vtkIntArray>(output->GetCellData(), "FacetId",
     mesh.subface_facet.size() == mesh.subfaces.size() ? mesh.subface_facet
                                                       : std::vector<int>(mesh.subfaces.size(), -1));
   output->GetCellData()->SetActiveScalars("FacetId");
@@ -923,6 +989,22 @@ void vtkGDRConversion::FromPslg(const gdr::Pslg& pslg, vtkPolyData* output)
   }
   AddIsolatedPointVertices(npoints, used, output);
   output->SetLines(FixedSizeCells(pslg.segments, { 0, 1 }));
+  if (static_cast<vtkIdType>(pslg.point_markers.size()) == npoints)
+  {
+    AddArray<vtkIntArray>(output->GetPointData(), "BoundaryMarker", pslg.point_markers);
+  }
+  const int na = pslg.point_attribute_count;
+  if (na > 0 && pslg.point_attributes.size() == pslg.points.size() * na)
+  {
+    AddArray<vtkDoubleArray>(output->GetPointData(), "PointAttributes", pslg.point_attributes, na);
+  }
+  if (!pslg.segments.empty() && pslg.segment_markers.size() == pslg.segments.size())
+  {
+    // Cell ids count the vertex cells first: they get 0, no marker.
+    std::vector<int> markers(static_cast<std::size_t>(output->GetNumberOfVerts()), 0);
+    markers.insert(markers.end(), pslg.segment_markers.begin(), pslg.segment_markers.end());
+    AddArray<vtkIntArray>(output->GetCellData(), "BoundaryMarker", markers);
+  }
   vtkFieldData* fd = output->GetFieldData();
   AddSeedArray("HoleSeeds", pslg.holes, fd);
   if (!pslg.regions.empty())
@@ -967,7 +1049,7 @@ void vtkGDRConversion::FromSurface(const gdr::Surface& surface, vtkPolyData* out
     std::vector<int> facet(static_cast<std::size_t>(output->GetNumberOfCells()), -1);
     std::copy(surface.triangle_facet.begin(), surface.triangle_facet.end(),
       facet.end() - static_cast<std::ptrdiff_t>(surface.triangles.size()));
-    AddCellArray<vtkIntArray>(output->GetCellData(), "FacetId", facet);
+    AddArray<vtkIntArray>(output->GetCellData(), "FacetId", facet);
   }
   vtkFieldData* fd = output->GetFieldData();
   AddSeedArray("HoleSeeds", surface.holes, fd);
@@ -1011,7 +1093,7 @@ void vtkGDRConversion::FromTetMesh(const gdr::TetMesh& mesh, vtkUnstructuredGrid
   output->SetCells(VTK_TETRA, FixedSizeCells(mesh.tets, { 1, 0, 2, 3 }));
   if (mesh.tet_region.size() == mesh.tets.size() && !mesh.tets.empty())
   {
-    AddCellArray<vtkIntArray>(output->GetCellData(), "Region", mesh.tet_region);
+    AddArray<vtkIntArray>(output->GetCellData(), "Region", mesh.tet_region);
   }
 }
 

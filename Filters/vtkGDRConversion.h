@@ -32,7 +32,11 @@ public:
    * Builds a PSLG from polydata: line and polyline pieces and polygon (and triangle
    * strip) edges become segments (repeated ids skipped, duplicates merged), vertex
    * cells give isolated points; with no cells at all every point is an input point.
-   * Only points used by cells are kept. Points of `holeSeeds` (may be null) become
+   * Only points used by cells are kept. Triangle's data is read from arrays where present
+   * (any numeric type): the point array BoundaryMarker (point markers), the 1-component
+   * cell array BoundaryMarker (the marker of each cell's segments; a segment given twice
+   * keeps its first cell's) and the point array PointAttributes (one component per
+   * attribute). Points of `holeSeeds` (may be null) become
    * hole seeds, and so do the tuples of the input's field data array HoleSeeds (the
    * holes of a .poly file, see FromPslg). `z` receives the plane height of the input;
    * `warning` is set when the input is not in a z = constant plane.
@@ -41,11 +45,18 @@ public:
     std::string& warning);
 
   /**
-   * Triangles of `mesh` at height `z` into `output` (reset first), with the point array
-   * PointType (0 input, 1 segment Steiner point, 2 free Steiner point) when the mesh
-   * carries point types.
+   * Triangles of `mesh` at height `z` into `output` (reset first), with the point arrays
+   * PointType (0 input, 1 segment Steiner point, 2 free Steiner point), BoundaryMarker and
+   * PointAttributes (one component per attribute) and the cell array Region, each where
+   * the mesh carries it.
    */
   static void ToPolyData(const gdr::TriMesh& mesh, double z, vtkPolyData* output);
+
+  /**
+   * The subsegments of `mesh` as lines over the points and point data of `triangles` (its
+   * ToPolyData output, shared), with the cell array BoundaryMarker, the active scalars.
+   */
+  static void ToSubsegments(const gdr::TriMesh& mesh, vtkPolyData* triangles, vtkPolyData* output);
 
   /**
    * Cell arrays MinAngle, MaxAngle (degrees), RadiusEdgeRatio, Area and IsBad
@@ -145,7 +156,9 @@ public:
   ///@{
   /**
    * Meshing inputs read from files, as the readers give them: a PSLG as points at z = 0,
-   * its segments as lines and its isolated points as vertices; a surface as triangles
+   * its segments as lines and its isolated points as vertices, with the arrays ToPslg
+   * reads back where the file has them: point and cell (segment) arrays BoundaryMarker (0
+   * on vertex cells), point array PointAttributes; a surface as triangles
    * (cell array FacetId: the input facet of each, where polygons were triangulated),
    * lines for its segments and vertices for isolated points. Hole seeds go into the field
    * data array HoleSeeds (3 components), region seeds into RegionSeeds (3 components) with

@@ -22,7 +22,7 @@ vtkStandardNewMacro(vtkGPUConstrainedDelaunay2D);
 vtkGPUConstrainedDelaunay2D::vtkGPUConstrainedDelaunay2D()
 {
   this->SetNumberOfInputPorts(2);
-  this->SetNumberOfOutputPorts(2);
+  this->SetNumberOfOutputPorts(3);
 }
 
 //------------------------------------------------------------------------------
@@ -73,13 +73,15 @@ int vtkGPUConstrainedDelaunay2D::RequestData(vtkInformation* vtkNotUsed(request)
   vtkDataSet* holeSeeds = vtkDataSet::GetData(inputVector[1], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkTable* histogram = vtkTable::GetData(outputVector, 1);
-  if (!output || !histogram)
+  vtkPolyData* subsegments = vtkPolyData::GetData(outputVector, 2);
+  if (!output || !histogram || !subsegments)
   {
     vtkErrorMacro("Missing output data objects.");
     return 0;
   }
   output->Initialize();
   histogram->Initialize();
+  subsegments->Initialize();
 
   gdr::Pslg pslg;
   double z = 0.0;
@@ -127,10 +129,12 @@ int vtkGPUConstrainedDelaunay2D::RequestData(vtkInformation* vtkNotUsed(request)
 
   vtkNew<vtkPolyData> mesh;
   vtkNew<vtkTable> table;
+  vtkNew<vtkPolyData> lines;
   if (!run.Execute(
         [&]()
         {
           vtkGDRConversion::ToPolyData(result.mesh, z, mesh);
+          vtkGDRConversion::ToSubsegments(result.mesh, mesh, lines);
           vtkGDRConversion::AddTriangleQuality(result.mesh, this->MinimumAngle, mesh);
           vtkGDRConversion::AddStats(result.stats, mesh->GetFieldData());
           vtkGDRConversion::Histogram(mesh->GetCellData()->GetArray("MinAngle"), 60, table);
@@ -145,6 +149,7 @@ int vtkGPUConstrainedDelaunay2D::RequestData(vtkInformation* vtkNotUsed(request)
 
   output->ShallowCopy(mesh);
   histogram->ShallowCopy(table);
+  subsegments->ShallowCopy(lines);
   this->UpdateProgress(1.0);
   return 1;
 }

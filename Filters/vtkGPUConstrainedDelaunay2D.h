@@ -10,20 +10,31 @@
  * segment, every polygon contributes its edges (closing edge included) as segments,
  * and vertex cells are isolated input points. A polydata with no cells at all gives
  * all of its points as input points. Only x and y are used. As in vtkDelaunay2D,
- * clockwise polygons are holes when some polygon turns counter-clockwise.
+ * clockwise polygons are holes when some polygon turns counter-clockwise. Triangle's
+ * boundary markers and point attributes are taken from the arrays BoundaryMarker (point
+ * data: point markers; cell data: the marker of the segments of each line or polygon) and
+ * PointAttributes (point data, one component per attribute), as vtkTriangleTetGenReader
+ * gives them for a .poly or .node.
  * Input (port 1, optional, any vtkDataSet): its points are hole seeds; the region
  * enclosed by segments around each seed is removed.
  *
  * Output (port 0, vtkPolyData): counter-clockwise triangles. Cell data: MinAngle and
  * MaxAngle (degrees), RadiusEdgeRatio (circumradius over shortest edge), Area, IsBad
  * (1 where MinAngle < MinimumAngle). Point data: PointType (0 input point, 1 Steiner
- * point on a segment, 2 free Steiner point). Field data: the run's statistics
+ * point on a segment, 2 free Steiner point); BoundaryMarker and PointAttributes, as
+ * Triangle's output carries them: input points keep their marker, a point on a
+ * subsegment without one takes the subsegment's, other points 0; attributes are
+ * interpolated linearly at Steiner points. Field data: the run's statistics
  * (Backend, DeviceName, Iterations, SteinerPoints, BadTriangles, BadAreaPercent,
  * MinimumAngleReached, TotalSeconds, CDTSeconds, RefineSeconds, and the per-phase
  * times as the parallel arrays PhaseNames / PhaseSeconds).
  * Output (port 1, vtkTable): a histogram of MinAngle in 1-degree bins over [0, 60]
  * with the columns bin_extents (bin center, degrees) and bin_values (number of
  * triangles), named like the output of ParaView's Histogram filter.
+ * Output (port 2, vtkPolyData): the subsegments, the mesh edges on input segments (and
+ * on the convex hull unless the exterior is removed), as lines over the points and point
+ * data of port 0, with the cell array BoundaryMarker: the segment's marker (as Triangle's
+ * .poly output), 1 where that is 0 or absent on the mesh boundary, 0 inside.
  *
  * Errors of the engine (crossing segments, no GPU for Backend=GPU, out of memory...)
  * are reported with vtkErrorMacro and leave empty outputs. An aborted run also leaves

@@ -4,13 +4,16 @@
 // filter's converter) and checked with the core validator gdr::validate_trimesh.
 #include "FilterTestSupport.h"
 #include "vtkGPUConstrainedDelaunay2D.h"
+#include "vtkTriangleTetGenReader.h"
 
 #include "vtkCallbackCommand.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
+#include "vtkIntArray.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -568,6 +571,240 @@ void TestCrossingLines()
 
 }
 
+// Triangle's boundary markers and point attributes, from arrays of any polydata: a 4 x 4
+// square of four lines marked 1 to 4 (corners marked 10, 20, 30, 40) and a free point
+// marked 7, with the attributes 2x + 3y + 1 (linear: reproduced exactly) and x^2.
+void TestMarkersAndAttributes()
+{
+  const double corners[4][2] = { { 0, 0 }, { 4, 0 }, { 4, 4 }, { 0, 4 } };
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkIntArray> pointMarkers;
+  pointMarkers->SetName("BoundaryMarker");
+  vtkNew<vtkDoubleArray> attributes;
+  attributes->SetName("PointAttributes");
+  attributes->SetNumberOfComponents(2);
+  auto f = [](double x, double y) { return 2 * x + 3 * y + 1; };
+  auto add = [&](double x, double y, int marker)
+  {
+    pointMarkers->InsertNextValue(marker);
+    attributes->InsertNextTuple2(f(x, y), x * x);
+    return points->InsertNextPoint(x, y, 0);
+  };
+  for (int i = 0; i < 4; ++i)
+  {
+    add(corners[i][0], corners[i][1], 10 * (i + 1));
+  }
+  const vtkIdType inner = add(1, 1, 7);
+  vtkNew<vtkCellArray> verts;
+  verts->InsertNextCell(1, &inner);
+  vtkNew<vtkCellArray> lines;
+  vtkNew<vtkIntArray> segmentMarkers; // on every cell: the vertex first (0), then the lines
+  segmentMarkers->SetName("BoundaryMarker");
+  segmentMarkers->InsertNextValue(0);
+  for (vtkIdType i = 0; i < 4; ++i)
+  {
+    const vtkIdType line[2] = { i, (i + 1) % 4 };
+    lines->InsertNextCell(2, line);
+    segmentMarkers->InsertNextValue(static_cast<int>(i + 1));
+  }
+  vtkNew<vtkPolyData> pd;
+  pd->SetPoints(points);
+  pd->SetVerts(verts);
+  pd->SetLines(lines);
+  pd->GetPointData()->AddArray(pointMarkers);
+  pd->GetPointData()->AddArray(attributes);
+  pd->GetCellData()->AddArray(segmentMarkers);
+
+  vtkNew<vtkGPUConstrainedDelaunay2D> filter;
+  EventLog log;
+  log.Watch(filter);
+  filter->SetInputData(pd);
+  filter->SetBackendToCPU();
+  filter->SetMinimumAngle(25);
+  filter->SetMaximumArea(0.1);
+  filter->Update();
+  CHECK(log.Errors.empty());
+  CheckArrays(filter);
+  Validate(filter->GetOutput(), PslgOf(pd), 25, true);
+
+  // The segment (0-based) a point lies on, between its ends, else -1.
+  auto segmentOf = [&](const double p[3])
+  {
+    for (int s = 0; s < 4; ++s)
+    {
+      const double* a = corners[s];
+      const double* b = corners[(s + 1) % 4];
+      const bool end = (p[0] == a[0] && p[1] == a[1]) || (p[0] == b[0] && p[1] == b[1]);
+      if (!end && OnSegment({ p[0], p[1] }, { a[0], a[1] }, { b[0], b[1] }))
+      {
+        return s;
+      }
+    }
+    return -1;
+  };
+  vtkPolyData* out = filter->GetOutput();
+  vtkDataArray* marker = out->GetPointData()->GetArray("BoundaryMarker");
+  vtkDataArray* attribute = out->GetPointData()->GetArray("PointAttributes");
+  vtkDataArray* type = out->GetPointData()->GetArray("PointType");
+  CHECK(marker && marker->GetNumberOfTuples() == out->GetNumberOfPoints());
+  CHECK(attribute && attribute->GetNumberOfComponents() == 2 &&
+    attribute->GetNumberOfTuples() == out->GetNumberOfPoints());
+  if (!marker || !attribute || !type)
+  {
+    return;
+  }
+  int onSegment[4] = { 0, 0, 0, 0 };
+  int free = 0;
+  for (vtkIdType i = 0; i < out->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    out->GetPoint(i, p);
+    const int m = static_cast<int>(marker->GetComponent(i, 0));
+    const int s = segmentOf(p);
+    int corner = -1;
+    for (int c = 0; c < 4; ++c)
+    {
+      corner = p[0] == corners[c][0] && p[1] == corners[c][1] ? c : corner;
+    }
+    // Linear attributes are reproduced (up to rounding) wherever the point is.
+    CHECK(std::fabs(attribute->GetComponent(i, 0) - f(p[0], p[1])) <= 1e-12 * 21);
+    if (corner >= 0)
+    {
+      CHECK(m == 10 * (corner + 1)); // input points keep their markers
+    }
+    else if (p[0] == 1 && p[1] == 1)
+    {
+      CHECK(m == 7);
+    }
+    else if (s >= 0)
+    {
+      ++onSegment[s];
+      CHECK(m == s + 1); // a point on a subsegment takes the segment's marker
+      CHECK(type->GetComponent(i, 0) == 1);
+      // Along the segment the attributes are interpolated between its ends' values.
+      const double* a = corners[s];
+      const double* b = corners[(s + 1) % 4];
+      const double lo = std::min(a[0] * a[0], b[0] * b[0]);
+      const double hi = std::max(a[0] * a[0], b[0] * b[0]);
+      const double x2 = attribute->GetComponent(i, 1);
+      CHECK(x2 >= lo - 1e-12 && x2 <= hi + 1e-12);
+    }
+    else
+    {
+      ++free;
+      CHECK(m == 0); // interior Steiner points
+      CHECK(type->GetComponent(i, 0) == 2);
+    }
+  }
+  CHECK(onSegment[0] > 0 && onSegment[1] > 0 && onSegment[2] > 0 && onSegment[3] > 0);
+  CHECK(free > 0);
+
+  // Port 2: the subsegments with their segment's marker, covering each segment once.
+  vtkPolyData* subsegments = vtkPolyData::SafeDownCast(filter->GetOutputDataObject(2));
+  CHECK(subsegments && subsegments->GetNumberOfLines() == subsegments->GetNumberOfCells());
+  CHECK(subsegments && subsegments->GetNumberOfPoints() == out->GetNumberOfPoints());
+  vtkDataArray* lineMarker =
+    subsegments ? subsegments->GetCellData()->GetArray("BoundaryMarker") : nullptr;
+  CHECK(lineMarker && lineMarker->GetNumberOfTuples() == subsegments->GetNumberOfCells());
+  if (!lineMarker)
+  {
+    return;
+  }
+  CHECK(subsegments->GetNumberOfCells() == 4 + onSegment[0] + onSegment[1] + onSegment[2] + onSegment[3]);
+  double length[4] = { 0, 0, 0, 0 };
+  vtkIdType n;
+  const vtkIdType* ids;
+  vtkIdType cell = 0;
+  for (subsegments->GetLines()->InitTraversal(); subsegments->GetLines()->GetNextCell(n, ids); ++cell)
+  {
+    CHECK(n == 2);
+    double a[3], b[3], mid[3];
+    subsegments->GetPoint(ids[0], a);
+    subsegments->GetPoint(ids[1], b);
+    for (int k = 0; k < 3; ++k)
+    {
+      mid[k] = 0.5 * (a[k] + b[k]);
+    }
+    const int s = segmentOf(mid);
+    CHECK(s >= 0);
+    if (s >= 0)
+    {
+      CHECK(lineMarker->GetComponent(cell, 0) == s + 1);
+      length[s] += std::hypot(b[0] - a[0], b[1] - a[1]);
+    }
+  }
+  for (const double l : length)
+  {
+    CHECK(std::fabs(l - 4) < 1e-12);
+  }
+
+  // Without markers, as Triangle: 1 on the mesh boundary, 0 inside; without attributes none.
+  pd->GetPointData()->Initialize();
+  pd->GetCellData()->Initialize();
+  filter->Update();
+  CHECK(log.Errors.empty());
+  out = filter->GetOutput();
+  CHECK(out->GetPointData()->GetArray("PointAttributes") == nullptr);
+  marker = out->GetPointData()->GetArray("BoundaryMarker");
+  CHECK(marker != nullptr);
+  for (vtkIdType i = 0; marker && i < out->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    out->GetPoint(i, p);
+    const bool boundary = p[0] == 0 || p[0] == 4 || p[1] == 0 || p[1] == 4;
+    CHECK(marker->GetComponent(i, 0) == (boundary ? 1 : 0));
+  }
+  lineMarker = filter->GetOutput(2)->GetCellData()->GetArray("BoundaryMarker");
+  CHECK(lineMarker && lineMarker->GetRange()[0] == 1 && lineMarker->GetRange()[1] == 1);
+}
+
+// The same from a Triangle file through the reader: two_regions.poly, a 2 x 1 rectangle of
+// segments marked 5 split by the segment x = 1 marked 7; points marked 5 but the inner
+// segment's ends (unmarked: they take 5, from the first marked segment through them);
+// one attribute, x + 2y.
+void TestFileMarkers()
+{
+  vtkNew<vtkTriangleTetGenReader> reader;
+  reader->SetFileName(GDR_TEST_TWO_REGIONS);
+  vtkNew<vtkGPUConstrainedDelaunay2D> filter;
+  EventLog log;
+  log.Watch(filter);
+  filter->SetInputConnection(reader->GetOutputPort());
+  filter->SetBackendToCPU();
+  filter->SetMaximumArea(0.01);
+  filter->Update();
+  CHECK(log.Errors.empty());
+  CheckArrays(filter);
+  Validate(filter->GetOutput(), PslgOf(reader->GetOutput()), 20, true);
+
+  vtkPolyData* out = filter->GetOutput();
+  vtkDataArray* marker = out->GetPointData()->GetArray("BoundaryMarker");
+  vtkDataArray* attribute = out->GetPointData()->GetArray("PointAttributes");
+  CHECK(marker && attribute && attribute->GetNumberOfComponents() == 1);
+  int inner = 0;
+  for (vtkIdType i = 0; marker && attribute && i < out->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    out->GetPoint(i, p);
+    const bool boundary = p[0] == 0 || p[0] == 2 || p[1] == 0 || p[1] == 1;
+    const bool onInner = p[0] == 1 && !boundary;
+    inner += onInner ? 1 : 0;
+    CHECK(marker->GetComponent(i, 0) == (boundary ? 5 : (onInner ? 7 : 0)));
+    CHECK(std::fabs(attribute->GetComponent(i, 0) - (p[0] + 2 * p[1])) <= 1e-12 * 4);
+  }
+  CHECK(inner > 0);
+  vtkDataArray* lineMarker = filter->GetOutput(2)->GetCellData()->GetArray("BoundaryMarker");
+  CHECK(lineMarker && lineMarker->GetNumberOfTuples() > 0);
+  vtkIdType marked7 = 0;
+  for (vtkIdType c = 0; lineMarker && c < lineMarker->GetNumberOfTuples(); ++c)
+  {
+    const double m = lineMarker->GetComponent(c, 0);
+    CHECK(m == 5 || m == 7);
+    marked7 += m == 7 ? 1 : 0;
+  }
+  CHECK(marked7 == inner + 1); // the inner segment's pieces
+}
+
 void TestAbort()
 {
   vtkSmartPointer<vtkPolyData> plate = ReadPlate();
@@ -636,6 +873,8 @@ int main(int argc, char* argv[])
     { "OffCentersAndCDTOnly", TestOffCentersAndCDTOnly },
     { "EmptyInput", TestEmptyInput },
     { "CrossingLines", TestCrossingLines },
+    { "MarkersAndAttributes", TestMarkersAndAttributes },
+    { "FileMarkers", TestFileMarkers },
     { "Abort", TestAbort },
     { "Backends", TestBackends },
   };

@@ -12,6 +12,7 @@
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkNew.h"
+#include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 #include "vtkUnstructuredGrid.h"
@@ -103,6 +104,47 @@ void TestTriangleRegions()
   }
   CHECK(std::abs(left - 1.0) < 1e-9 && std::abs(right - 1.0) < 1e-9);
   CHECK(largestLeft <= 0.001 * (1 + 1e-12) && largestRight > 0.001);
+}
+
+// Triangle's boundary markers and point attributes as arrays that the 2D filter reads
+// (its test FileMarkers meshes this file): point and line cell data BoundaryMarker, point
+// data PointAttributes.
+void TestTriangleMarkers()
+{
+  vtkNew<vtkTriangleTetGenReader> reader;
+  reader->SetFileName((kCliData + "/two_regions.poly").c_str());
+  reader->Update();
+  vtkPolyData* pslg = reader->GetOutput();
+  CHECK(pslg->GetNumberOfLines() == 7 && pslg->GetNumberOfCells() == 7);
+  vtkDataArray* pointMarkers = pslg->GetPointData()->GetArray("BoundaryMarker");
+  vtkDataArray* segmentMarkers = pslg->GetCellData()->GetArray("BoundaryMarker");
+  vtkDataArray* attributes = pslg->GetPointData()->GetArray("PointAttributes");
+  CHECK(pointMarkers && pointMarkers->GetNumberOfTuples() == 6);
+  CHECK(segmentMarkers && segmentMarkers->GetNumberOfTuples() == 7);
+  CHECK(attributes && attributes->GetNumberOfComponents() == 1 &&
+    attributes->GetNumberOfTuples() == 6);
+  if (!pointMarkers || !segmentMarkers || !attributes)
+  {
+    return;
+  }
+  const int expected[6] = { 5, 0, 5, 5, 0, 5 };
+  for (vtkIdType i = 0; i < 6; ++i)
+  {
+    double p[3];
+    pslg->GetPoint(i, p);
+    CHECK(pointMarkers->GetComponent(i, 0) == expected[i]);
+    CHECK(attributes->GetComponent(i, 0) == p[0] + 2 * p[1]); // x + 2y in the file
+  }
+  for (vtkIdType c = 0; c < 7; ++c)
+  {
+    CHECK(segmentMarkers->GetComponent(c, 0) == (c == 6 ? 7 : 5));
+  }
+
+  // A .node without markers or attributes gives no such arrays.
+  reader->SetFileName((kData + "/points_only.node").c_str());
+  reader->Update();
+  CHECK(reader->GetOutput()->GetPointData()->GetArray("BoundaryMarker") == nullptr);
+  CHECK(reader->GetOutput()->GetPointData()->GetArray("PointAttributes") == nullptr);
 }
 
 // A .node alone: isolated points become vertex cells.
@@ -235,6 +277,7 @@ int main(int argc, char* argv[])
   const std::map<std::string, std::function<void()>> tests = {
     { "TrianglePoly", TestTrianglePoly },
     { "TriangleRegions", TestTriangleRegions },
+    { "TriangleMarkers", TestTriangleMarkers },
     { "TriangleNode", TestTriangleNode },
     { "TetGenPoly", TestTetGenPoly },
     { "Off", TestOff },
