@@ -111,8 +111,20 @@ def _array(values, name, columns, dtype):
     return a
 
 
+def _cells(connectivity, size):
+    """Cells of `size` points each, from their flat point ids, as a vtkCellArray."""
+    cells = vtkCellArray()
+    offsets = np.arange(0, len(connectivity) + 1, size, dtype=np.int64)
+    cells.SetData(numpy_support.numpy_to_vtkIdTypeArray(offsets, deep=1),
+                  numpy_support.numpy_to_vtkIdTypeArray(
+                      np.ascontiguousarray(connectivity, dtype=np.int64), deep=1))
+    return cells
+
+
 def _polydata(points, segments):
-    """Points (n, 2) and segments (k, 2) as vtkPolyData with z = 0 and lines."""
+    """Points (n, 2) and segments (k, 2) as vtkPolyData with z = 0: with segments, one
+    polyvertex of all points (so that points on no segment are kept, in their order, as
+    cell 0) and the segments as lines (cells 1 to k)."""
     xyz = np.zeros((len(points), 3))
     xyz[:, :points.shape[1]] = points
     vtk_points = vtkPoints()
@@ -121,13 +133,32 @@ def _polydata(points, segments):
     pd = vtkPolyData()
     pd.SetPoints(vtk_points)
     if segments is not None and len(segments):
-        lines = vtkCellArray()
-        offsets = np.arange(0, 2 * len(segments) + 1, 2, dtype=np.int64)
-        lines.SetData(numpy_support.numpy_to_vtkIdTypeArray(offsets, deep=1),
-                      numpy_support.numpy_to_vtkIdTypeArray(
-                          np.ascontiguousarray(segments, dtype=np.int64).ravel(), deep=1))
-        pd.SetLines(lines)
+        pd.SetVerts(_cells(np.arange(len(points)), len(points)))
+        pd.SetLines(_cells(segments.ravel(), 2))
     return pd
+
+
+def _add_array(data, name, values):
+    array = numpy_support.numpy_to_vtk(np.ascontiguousarray(values), deep=1)
+    array.SetName(name)
+    data.AddArray(array)
+
+
+def _per_item(values, name, count, dtype, columns=False):
+    """`values` with one value per item (count items), (count,) or (count, 1) as the
+    `triangle` package gives markers, as a (count,) array; with `columns`, (count,) or
+    (count, a) as a (count, a) array. None stays None."""
+    if values is None:
+        return None
+    a = np.asarray(values, dtype=dtype)
+    if columns and a.ndim == 1:
+        a = a.reshape(-1, 1)
+    elif not columns and a.ndim == 2 and a.shape[1] == 1:
+        a = a[:, 0]
+    if a.ndim != (2 if columns else 1) or len(a) != count:
+        raise ValueError(f"{name} must have one {'row' if columns else 'value'} per item "
+                         f"({count}), got shape {a.shape}")
+    return a
 
 
 def _field_values(fd):
@@ -144,22 +175,44 @@ def _field_values(fd):
 _CELL_ARRAYS = {"MinAngle": "min_angle", "MaxAngle": "max_angle",
                 "RadiusEdgeRatio": "radius_edge_ratio", "Area": "area", "IsBad": "is_bad",
                 "Region": "region"}
+_POINT_ARRAYS = {"PointType": "point_type", "BoundaryMarker": "point_markers",
+                 "PointAttributes": "point_attributes"}
+
+
+def _connectivity(cells, size):
+    """The point ids of cells of `size` points each as an (c, size) int64 array."""
+    conn = numpy_support.vtk_to_numpy(cells.GetConnectivityArray()) if cells else np.zeros(0)
+    return np.array(conn, dtype=np.int64).reshape(-1, size)
+
+
+def _copy_arrays(data, names, result):
+    """The arrays of `data` named in `names` (VTK name: result key) into `result`."""
+    for vtk_name, key in names.items():
+        array = data.GetArray(vtk_name)
+        if array is not None:
+            result[key] = numpy_support.vtk_to_numpy(array).copy()
 
 
 def refine_2d(points, segments=None, holes=None, min_angle=20.0, max_area=None,
               max_edge=None, switches=None, backend="auto", remove_exterior=False,
               strict=False, max_steiner=None, mode="chew", off_centers=True,
-              cdt_only=False, regions=None):
+              cdt_only=False, regions=None, point_markers=None, segment_markers=None,
+              point_attributes=None):
     """Quality constrained Delaunay refinement of a planar straight-line graph.
 
     points: (n, 2) coordinates (an (n, 3) array is read in its x, y). A dict in the style
-        of the `triangle` package ({"vertices", "segments", "holes"}) is accepted too.
+        of the `triangle` package ({"vertices", "segments", "holes", "regions",
+        "vertex_markers", "segment_markers", "vertex_attributes"}) is accepted too.
     segments: (k, 2) point indices (0-based), or None. Crossing segments and points lying
         on segments are split there (a MeshingWarning counts them) unless strict=True.
     holes: (h, 2) seeds of regions to leave empty.
     regions: (r, 4) rows x, y, attribute, max_area, as Triangle's region list: the region
         enclosed by segments around (x, y) gets the attribute (result "region") and, when
         max_area > 0, that area bound.
+    point_markers: (n,) integer boundary markers of the points; segment_markers: (k,) of
+        the segments ((n, 1) and (k, 1) too); point_attributes: (n,) or (n, a) values per
+        point. They are carried
+        to the result as Triangle carries them (Triangle's .node and .poly).
     min_angle: smallest angle in degrees, at most 34 (0: no angle bound).
     max_area, max_edge, max_steiner: size bounds and the Steiner point cap (None: off).
     switches: Triangle's switch string ("pq30a0.1"); it overrides the options it names,
@@ -171,7 +224,12 @@ def refine_2d(points, segments=None, holes=None, min_angle=20.0, max_area=None,
 
     Returns a MeshResult with points (m, 2), triangles (t, 3), point_type (m,), the cell
     arrays min_angle, max_angle, radius_edge_ratio, area and is_bad (t,), region (t,) when
-    regions were given, and stats.
+    regions were given, segments (s, 2): the subsegments (mesh edges on input segments and,
+    unless the exterior is removed, on the convex hull) with segment_markers (s,) (the
+    segment's marker; 1 where that is 0 or not given on the mesh boundary, 0 inside),
+    point_markers (m,) (a point's own marker, else that of a marked subsegment through it,
+    else 0), point_attributes (m, a) when given (interpolated linearly at new points), and
+    stats.
     Raises MeshingError (with the core's status and message) when the input is refused or
     the run fails, ValueError for arrays of the wrong shape or indices out of range.
     """
@@ -184,6 +242,12 @@ def refine_2d(points, segments=None, holes=None, min_angle=20.0, max_area=None,
             holes = points.get("holes")
         if regions is None:
             regions = points.get("regions")
+        if point_markers is None:
+            point_markers = points.get("vertex_markers")
+        if segment_markers is None:
+            segment_markers = points.get("segment_markers")
+        if point_attributes is None:
+            point_attributes = points.get("vertex_attributes")
         points = points["vertices"]
     points = _array(points, "points", (2, 3), np.float64)
     if segments is not None:
@@ -195,17 +259,29 @@ def refine_2d(points, segments=None, holes=None, min_angle=20.0, max_area=None,
     if mode not in ("ruppert", "chew"):
         raise ValueError(f"mode must be 'ruppert' or 'chew', got {mode!r}")
 
+    point_markers = _per_item(point_markers, "point_markers", len(points), np.int32)
+    point_attributes = _per_item(point_attributes, "point_attributes", len(points), np.float64,
+                                 columns=True)
+    segment_markers = _per_item(segment_markers, "segment_markers",
+                                0 if segments is None else len(segments), np.int32)
+
     pslg = _polydata(points, segments)
+    # The arrays the filter reads Triangle's data from (docs/paraview.md).
+    if point_markers is not None:
+        _add_array(pslg.GetPointData(), "BoundaryMarker", point_markers)
+    if point_attributes is not None:
+        _add_array(pslg.GetPointData(), "PointAttributes", point_attributes)
+    if segment_markers is not None and len(segment_markers):
+        # on every cell: the polyvertex of the points first (no marker), then the lines
+        _add_array(pslg.GetCellData(), "BoundaryMarker",
+                   np.concatenate([[0], segment_markers]).astype(np.int32))
     if regions is not None and len(regions):
         regions = _array(regions, "regions", (4,), np.float64)
         seeds = np.zeros((len(regions), 3))
         seeds[:, :2] = regions[:, :2]
-        for name, values, components in (("RegionSeeds", seeds, 3),
-                                          ("RegionAttribute", regions[:, 2], 1),
-                                          ("RegionMaximumArea", regions[:, 3], 1)):
-            array = numpy_support.numpy_to_vtk(np.ascontiguousarray(values), deep=1)
-            array.SetName(name)
-            pslg.GetFieldData().AddArray(array)
+        for name, values in (("RegionSeeds", seeds), ("RegionAttribute", regions[:, 2]),
+                             ("RegionMaximumArea", regions[:, 3])):
+            _add_array(pslg.GetFieldData(), name, values)
     mesher = vtkGPUConstrainedDelaunay2D()
     mesher.SetInputData(pslg)
     if holes is not None and len(holes):
@@ -227,20 +303,18 @@ def refine_2d(points, segments=None, holes=None, min_angle=20.0, max_area=None,
     _run(mesher)
 
     out = mesher.GetOutput()
+    subsegments = mesher.GetOutput(2)
     result = MeshResult()
     xyz = numpy_support.vtk_to_numpy(out.GetPoints().GetData()) if out.GetPoints() else np.zeros((0, 3))
     result["points"] = np.array(xyz[:, :2], dtype=np.float64)
-    polys = out.GetPolys()
-    conn = numpy_support.vtk_to_numpy(polys.GetConnectivityArray()) if polys else np.zeros(0)
-    result["triangles"] = np.array(conn, dtype=np.int64).reshape(-1, 3)
-    point_type = out.GetPointData().GetArray("PointType")
-    if point_type is not None:
-        result["point_type"] = numpy_support.vtk_to_numpy(point_type).copy()
-    cd = out.GetCellData()
-    for vtk_name, key in _CELL_ARRAYS.items():
-        array = cd.GetArray(vtk_name)
-        if array is not None:
-            result[key] = numpy_support.vtk_to_numpy(array).copy()
+    result["triangles"] = _connectivity(out.GetPolys(), 3)
+    result["segments"] = _connectivity(subsegments.GetLines(), 2)
+    result["segment_markers"] = np.zeros(0, dtype=np.int32)
+    _copy_arrays(out.GetPointData(), _POINT_ARRAYS, result)
+    _copy_arrays(out.GetCellData(), _CELL_ARRAYS, result)
+    _copy_arrays(subsegments.GetCellData(), {"BoundaryMarker": "segment_markers"}, result)
+    if "point_attributes" in result:
+        result["point_attributes"] = result["point_attributes"].reshape(len(result.points), -1)
     result["stats"] = _field_values(out.GetFieldData())
     return result
 

@@ -95,6 +95,74 @@ def test_regions():
     check(len(as_dict.triangles) == len(mesh.triangles), "regions from a triangle-style dict")
 
 
+def test_markers_and_attributes():
+    # Triangle's data carried as Triangle carries it: a 4 x 4 square of segments marked 1 to
+    # 4 with unmarked corners, a free point (1, 1) marked 7, the attributes 2x + 3y + 1
+    # (linear: reproduced exactly) and x^2.
+    points = np.array([[0, 0], [4, 0], [4, 4], [0, 4], [1, 1]], dtype=float)
+    segments = np.array([[0, 1], [1, 2], [2, 3], [3, 0]])
+    f = lambda p: 2 * p[:, 0] + 3 * p[:, 1] + 1
+    attributes = np.column_stack([f(points), points[:, 0] ** 2])
+    mesh = gpudelaunay.refine_2d(points, segments, point_markers=[0, 0, 0, 0, 7],
+                                 segment_markers=[1, 2, 3, 4], point_attributes=attributes,
+                                 min_angle=25, max_area=0.1, backend="cpu")
+    m = len(mesh.points)
+    check(np.all(mesh.points[:5] == points), "input points first, the free point kept")
+    check(mesh.point_markers.shape == (m,) and mesh.point_attributes.shape == (m, 2),
+          "per point: markers %s, attributes %s" % (mesh.point_markers.shape,
+                                                   mesh.point_attributes.shape))
+    # An unmarked corner takes the marker of the first marked segment through it.
+    check(list(mesh.point_markers[:5]) == [1, 1, 2, 3, 7],
+          "input points: %s" % mesh.point_markers[:5])
+    x, y = mesh.points[5:, 0], mesh.points[5:, 1]
+    side = np.select([y == 0, x == 4, y == 4, x == 0], [1, 2, 3, 4], 0)  # segment marker
+    check(np.all((side > 0) == (mesh.point_type[5:] == 1)), "points on segments typed 1")
+    for k in (1, 2, 3, 4):
+        check(np.any(side == k), "Steiner points on segment %d" % k)
+    check(np.all(mesh.point_markers[5:] == side), "on a segment its marker, inside 0")
+    check(np.abs(mesh.point_attributes[:, 0] - f(mesh.points)).max() <= 1e-12 * 21,
+          "the linear attribute is reproduced")
+    x2 = mesh.point_attributes[5:, 1]  # between the ends' values along each segment
+    check(np.all(x2[side == 1] >= 0) and np.all(x2[side == 1] <= 16) and
+          np.all(np.abs(x2[(side == 2)] - 16) <= 1e-12) and np.all(x2[side == 3] <= 16) and
+          np.all(np.abs(x2[side == 4]) <= 1e-12), "x^2 along the segments")
+    check(np.all(np.abs(mesh.point_attributes[:5] - attributes) == 0), "input attributes kept")
+
+    # The subsegments, each with its segment's marker, cover the segments once.
+    on_boundary = 4 + np.count_nonzero(side)
+    check(mesh.segments.shape == (len(mesh.segment_markers), 2) and
+          len(mesh.segments) == on_boundary, "subsegments: %s" % (mesh.segments.shape,))
+    a, b = mesh.points[mesh.segments[:, 0]], mesh.points[mesh.segments[:, 1]]
+    mid = (a + b) / 2
+    side = np.select([mid[:, 1] == 0, mid[:, 0] == 4, mid[:, 1] == 4, mid[:, 0] == 0], [1, 2, 3, 4], 0)
+    check(np.all(mesh.segment_markers == side), "subsegment markers")
+    length = np.linalg.norm(b - a, axis=1)
+    for k in (1, 2, 3, 4):
+        check(abs(length[side == k].sum() - 4) < 1e-12, "segment %d covered" % k)
+
+    # The `triangle` package's names and (n, 1) markers give the same.
+    same = gpudelaunay.refine_2d({"vertices": points, "segments": segments,
+                                  "vertex_markers": [[0], [0], [0], [0], [7]],
+                                  "segment_markers": [[1], [2], [3], [4]],
+                                  "vertex_attributes": attributes},
+                                 min_angle=25, max_area=0.1, backend="cpu")
+    check(len(same.points) == m and np.all(same.point_markers[:5] == mesh.point_markers[:5]),
+          "triangle-style dict")
+    # Without markers, as Triangle: 1 on the boundary, 0 inside; no attributes.
+    plain = gpudelaunay.refine_2d(points, segments, min_angle=25, backend="cpu")
+    x, y = plain.points[:, 0], plain.points[:, 1]
+    boundary = (x == 0) | (x == 4) | (y == 0) | (y == 4)
+    check(np.all(plain.point_markers == boundary) and np.all(plain.segment_markers == 1) and
+          "point_attributes" not in plain, "without markers")
+    for bad in (dict(point_markers=[1, 2]), dict(segment_markers=[1]),
+                dict(point_attributes=np.zeros((4, 2)))):
+        try:
+            gpudelaunay.refine_2d(points, segments, backend="cpu", **bad)
+            check(False, "accepted %r" % bad)
+        except ValueError:
+            pass
+
+
 def read_poly(path):
     """Points, segments (0-based) and holes of a Triangle .poly file with its points in it."""
     rows = [line.split("#")[0].split() for line in open(path)]
@@ -166,6 +234,7 @@ def main():
     test_arrays_in_and_out()
     test_triangle_style()
     test_regions()
+    test_markers_and_attributes()
     test_rules()
     test_warnings_and_errors()
     print("NumPy API: all checks passed")
