@@ -8,7 +8,11 @@
  * - Triangle .poly (and .node): a planar straight-line graph at z = 0. Its segments are
  *   lines, points on no segment are vertex cells, and the holes section is kept in the
  *   field data array HoleSeeds (3 components), which vtkGPUConstrainedDelaunay2D uses as
- *   hole seeds (on top of any given on its HoleSeeds port).
+ *   hole seeds (on top of any given on its HoleSeeds port). Boundary markers and point
+ *   attributes, where the file has them, are the point array BoundaryMarker, the cell
+ *   array BoundaryMarker (each line's segment marker; 0 on vertex cells) and the point
+ *   array PointAttributes (one component per attribute), which the filter carries to its
+ *   output.
  * - TetGen .poly, .smesh (and .node), and .off: a surface. Facets are triangles (polygons
  *   are triangulated in their plane; the cell array FacetId gives each triangle's facet so
  *   that vtkGPUQualityTetMesh keeps the facet whole), segments are lines. The volume holes

@@ -64,6 +64,7 @@ Pslg read_vtk_pslg(const std::string& path, std::string& warning) {
     data = read(xml.Get(), path, error);
   } else {
     legacy->SetFileName(path.c_str());
+    legacy->ReadAllScalarsOn();  // not only the first: BoundaryMarker and PointAttributes
     if (!legacy->IsFilePolyData())
       throw Error(Status::IoError, path + ": not legacy VTK polydata (gdr 2d reads lines and polygons)");
     data = read(legacy.Get(), path, error);
