@@ -82,6 +82,25 @@ void AddArray(vtkDataSetAttributes* data, const char* name, const std::vector<Va
 
 namespace
 {
+// What Triangle's .node and .ele carry besides the mesh, where `mesh` has it: the cell array
+// Region (the regional attribute, -A), the point arrays BoundaryMarker and PointAttributes.
+void AddTriangleFileData(const gdr::TriMesh& mesh, vtkDataSet* output)
+{
+  if (!mesh.triangle_region.empty() && mesh.triangle_region.size() == mesh.triangles.size())
+  {
+    AddArray<vtkDoubleArray>(output->GetCellData(), "Region", mesh.triangle_region);
+  }
+  if (!mesh.points.empty() && mesh.point_markers.size() == mesh.points.size())
+  {
+    AddArray<vtkIntArray>(output->GetPointData(), "BoundaryMarker", mesh.point_markers);
+  }
+  const int na = mesh.point_attribute_count;
+  if (na > 0 && mesh.point_attributes.size() == mesh.points.size() * na)
+  {
+    AddArray<vtkDoubleArray>(output->GetPointData(), "PointAttributes", mesh.point_attributes, na);
+  }
+}
+
 // Maps VTK point ids to PSLG vertex indices, adding points on first use. With
 // `segmentMarkers` (a cell array), each new segment takes the marker of its cell.
 class PointMap
@@ -320,21 +339,7 @@ void vtkGDRConversion::ToPolyData(const gdr::TriMesh& mesh, double z, vtkPolyDat
     // and the mesh is to be coloured by MinAngle (AddTriangleQuality).
     output->GetPointData()->AddArray(type);
   }
-  if (!mesh.triangle_region.empty() && mesh.triangle_region.size() == mesh.triangles.size())
-  {
-    // Triangle's regional attribute (-A)
-    AddArray<vtkDoubleArray>(output->GetCellData(), "Region", mesh.triangle_region);
-  }
-  // What Triangle's .node carries, as the core carried it from the input.
-  if (static_cast<vtkIdType>(mesh.point_markers.size()) == npoints)
-  {
-    AddArray<vtkIntArray>(output->GetPointData(), "BoundaryMarker", mesh.point_markers);
-  }
-  const int na = mesh.point_attribute_count;
-  if (na > 0 && mesh.point_attributes.size() == mesh.points.size() * na)
-  {
-    AddArray<vtkDoubleArray>(output->GetPointData(), "PointAttributes", mesh.point_attributes, na);
-  }
+  AddTriangleFileData(mesh, output);
 }
 
 //------------------------------------------------------------------------------
@@ -1083,6 +1088,7 @@ void vtkGDRConversion::FromTriMesh(const gdr::TriMesh& mesh, vtkUnstructuredGrid
   output->Initialize();
   output->SetPoints(ToPoints(mesh.points));
   output->SetCells(VTK_TRIANGLE, FixedSizeCells(mesh.triangles, { 0, 1, 2 }));
+  AddTriangleFileData(mesh, output);
 }
 
 void vtkGDRConversion::FromTetMesh(const gdr::TetMesh& mesh, vtkUnstructuredGrid* output)

@@ -173,8 +173,9 @@ public:
 
   ///@{
   /**
-   * Meshes read from files: triangles (at z = 0) or tetrahedra (with the cell array Region
-   * when the mesh has regions).
+   * Meshes read from files: triangles (at z = 0) or tetrahedra, with the cell array Region
+   * when the mesh has regions, and for triangles the point arrays BoundaryMarker and
+   * PointAttributes when the .node has them.
    */
   static void FromTriMesh(const gdr::TriMesh& mesh, vtkUnstructuredGrid* output);
   static void FromTetMesh(const gdr::TetMesh& mesh, vtkUnstructuredGrid* output);

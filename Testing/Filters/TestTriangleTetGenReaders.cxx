@@ -244,6 +244,21 @@ void TestMeshFiles()
   reader->Update();
   CHECK(reader->GetOutput()->GetNumberOfCells() == 2);
   CHECK(reader->GetOutput()->GetCellType(0) == VTK_TRIANGLE);
+  CHECK(reader->GetOutput()->GetPointData()->GetArray("BoundaryMarker") == nullptr);
+
+  // What Triangle's output carries: point markers and attributes, the regional attribute.
+  std::ofstream(kOut + "/marked.node") << "4 2 1 1\n1 0 0 0.5 1\n2 1 0 1.5 2\n3 1 1 2.5 0\n4 0 1 3.5 4\n";
+  std::ofstream(kOut + "/marked.ele") << "2 3 1\n1 1 2 3 10\n2 1 3 4 20\n";
+  reader->SetFileName((kOut + "/marked.ele").c_str());
+  reader->Update();
+  vtkUnstructuredGrid* marked = reader->GetOutput();
+  vtkDataArray* markers = marked->GetPointData()->GetArray("BoundaryMarker");
+  vtkDataArray* attributes = marked->GetPointData()->GetArray("PointAttributes");
+  vtkDataArray* region = marked->GetCellData()->GetArray("Region");
+  CHECK(markers && markers->GetNumberOfTuples() == 4 && markers->GetComponent(1, 0) == 2 &&
+    markers->GetComponent(2, 0) == 0);
+  CHECK(attributes && attributes->GetNumberOfTuples() == 4 && attributes->GetComponent(3, 0) == 3.5);
+  CHECK(region && region->GetComponent(0, 0) == 10 && region->GetComponent(1, 0) == 20);
 }
 
 // Malformed or missing files: an error naming the file and line, and an empty output.
