@@ -756,6 +756,23 @@ void TestMarkersAndAttributes()
   }
   lineMarker = filter->GetOutput(2)->GetCellData()->GetArray("BoundaryMarker");
   CHECK(lineMarker && lineMarker->GetRange()[0] == 1 && lineMarker->GetRange()[1] == 1);
+
+  // A polygon's marker goes to its edges (cell ids count the vertex cell first).
+  vtkNew<vtkCellArray> polys;
+  const vtkIdType square[4] = { 0, 1, 2, 3 };
+  polys->InsertNextCell(4, square);
+  vtkNew<vtkIntArray> polygonMarkers;
+  polygonMarkers->SetName("BoundaryMarker");
+  polygonMarkers->InsertNextValue(0);
+  polygonMarkers->InsertNextValue(9);
+  pd->SetLines(nullptr);
+  pd->SetPolys(polys);
+  pd->GetCellData()->AddArray(polygonMarkers);
+  filter->Update();
+  CHECK(log.Errors.empty());
+  Validate(filter->GetOutput(), PslgOf(pd), 25, true);
+  lineMarker = filter->GetOutput(2)->GetCellData()->GetArray("BoundaryMarker");
+  CHECK(lineMarker && lineMarker->GetRange()[0] == 9 && lineMarker->GetRange()[1] == 9);
 }
 
 // The same from a Triangle file through the reader: two_regions.poly, a 2 x 1 rectangle of
