@@ -15,6 +15,7 @@
 #include "vtkWeakPointer.h"
 #include "vtkCommand.h"
 #include "vtkNew.h"
+#include "vtkOutputWindow.h"
 #include "vtkPVDataInformation.h"
 #include "vtkSMParaViewPipelineControllerWithRendering.h"
 #include "vtkSMPropertyHelper.h"
@@ -269,30 +270,46 @@ void pqGPUDelaunayGUI::onFilterEnd(vtkObject* caller)
   }
   algorithm->SetAbortOutput(false);
   algorithm->SetAbortExecute(0);
-  // Once the Apply that ran it has finished (it marks the proxy unmodified at its end).
   QPointer<pqProxy> proxy = this->RunningProxy;
+  if (!proxy)
+  {
+    return;
+  }
+  const QString name = proxy->getSMName();
+  vtkOutputWindow::GetInstance()->DisplayText(
+    qPrintable(name + ": run aborted; its outputs are empty. Apply to run it again.\n"));
+  // A first Apply runs the filter inside pqApplyBehavior's showData and marks the proxy
+  // UNMODIFIED after it; showData may process events meanwhile (it does when it opens the
+  // histogram's view), so a queued call would run too early. Wait for that mark instead.
+  // Later Applies and renders run the filter after their mark: mark it modified now.
+  bool firstApply = proxy->modifiedState() == pqProxy::UNINITIALIZED;
+  if (!firstApply)
+  {
+    proxy->setModifiedState(pqProxy::MODIFIED);
+  }
   vtkWeakPointer<vtkAlgorithm> weak = algorithm;
-  QTimer::singleShot(0, this,
-    [this, proxy, weak]()
+  auto connection = std::make_shared<QMetaObject::Connection>();
+  *connection = QObject::connect(proxy, &pqProxy::modifiedStateChanged, this,
+    [proxy, weak, connection, firstApply](pqServerManagerModelItem*) mutable
     {
-      if (!proxy)
+      if (!proxy || proxy->modifiedState() != pqProxy::UNMODIFIED)
       {
         return;
       }
-      proxy->setModifiedState(pqProxy::MODIFIED);
-      auto connection = std::make_shared<QMetaObject::Connection>();
-      *connection = QObject::connect(proxy, &pqProxy::modifiedStateChanged, this,
-        [proxy, weak, connection](pqServerManagerModelItem*)
-        {
-          if (proxy && proxy->modifiedState() == pqProxy::UNMODIFIED) // applied again
-          {
-            if (weak)
-            {
-              weak->Modified();
-            }
-            QObject::disconnect(*connection);
-          }
-        });
+      if (firstApply) // the aborted first Apply has ended
+      {
+        firstApply = false;
+        proxy->setModifiedState(pqProxy::MODIFIED);
+        return;
+      }
+      // Applied again: run even without a changed property (the views update dirty
+      // proxies only).
+      if (weak)
+      {
+        weak->Modified();
+      }
+      proxy->getProxy()->MarkDirty(proxy->getProxy());
+      QObject::disconnect(*connection);
     });
 }
 

@@ -12,7 +12,8 @@
  *    still swallows key presses and clicks outside the progress bar and its abort button),
  *  - enables the abort button and, when it is pressed, sets the running filter's abort
  *    flag (vtkAlgorithm::SetAbortExecuteAndUpdateTime), which the engine checks between
- *    its phases; the aborted filter's output is empty and its Apply button lit again.
+ *    its phases; the aborted filter's output is empty, its Apply button lit again (after
+ *    a first Apply too) and Output Messages says so.
  * It also gives the quality arrays MinAngle and MinDihedralAngle a fixed colour range
  * (0 to 60 and 0 to 70.5 degrees, the equilateral triangle's and the regular
  * tetrahedron's angles) through low-priority ParaView settings that user settings
