@@ -30,6 +30,7 @@ struct Strategies {
   bool touching = true;      // cavities that touch go in together when the mesh stays Delaunay
   bool block_rounds = true;  // small ExpandList windows run their rounds inside one GPU block
   bool worst_first = true;   // tetrahedra bad by shape alone worst first, not larger first
+  bool crowding = true;      // S3: fewer competitors while most of them lose (large cavities)
 };
 
 struct EngineParams {
@@ -135,6 +136,7 @@ struct Engine {
   static constexpr int kClaimRounds = 8;  // claim rounds per iteration (grow_cavities)
   m3d::StallDetector stall;
   u64 keep_below = 0;                     // priority ids below this compete this iteration
+  double crowd_share = 1.0;               // share of the competitors kept by crowding
 
   Engine(const EngineParams& p, const Callbacks& c) : params(p), cb(c) {}
 
@@ -149,6 +151,8 @@ struct Engine {
     for (int iter = 0; iter < params.max_iterations; ++iter) {
       if (cb.abort && cb.abort()) throw Error(Status::Aborted, "refinement aborted by the caller");
       clock.restart();
+      const auto t0 = std::chrono::steady_clock::now();
+      const std::vector<PhaseTime> phases_before = trace ? res.phases : std::vector<PhaseTime>{};
       const std::size_t nl = collect(iter == 0 && params.check_input_boundary);  // line 4
       if (nl == 0) break;                               // line 10
       res.iterations = iter + 1;
@@ -157,6 +161,7 @@ struct Engine {
       grow_cavities(ns);                                // line 8 (S2, S3, S5)
       const long long won = verify_and_number(ns);
       stagnant = !stagnant && won * 50 < static_cast<long long>(ns);
+      adjust_crowding(ns, won);
       if (won > 0) {
         insert(ns, won);                                // line 9
         idle = 0;
@@ -172,11 +177,21 @@ struct Engine {
         cb.progress(0.0, "iteration " + std::to_string(iter + 1) + ": " + std::to_string(nl) +
                              " elements to split, " + std::to_string(won) + " points inserted");
       if (trace) {
+        Ops::synchronize();
+        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        std::string phase_ms;  // this iteration's share of each phase
+        for (const PhaseTime& p : res.phases) {
+          double before = 0;
+          for (const PhaseTime& q : phases_before)
+            if (q.name == p.name) before = q.seconds;
+          if (p.seconds > before) phase_ms += " " + p.name + " " + std::to_string(1e3 * (p.seconds - before));
+        }
+        std::fprintf(stderr, "gdr-trace phases ms:%s\n", phase_ms.c_str());
         std::fprintf(stderr,
-                     "gdr-trace iter %d: tets %d, subfaces %d, points %d, elements %zu, "
+                     "gdr-trace iter %d: ms %.2f, tets %d, subfaces %d, points %d, elements %zu, "
                      "candidates %zu, won %lld, rounds %d, tuples %zu, MB %.1f (peak %.1f), "
                      "lost/encroach/touch/star/defer/cap/delaunay %s\n",
-                     iter + 1, dm.ntet, dm.nsub, dm.npts, nl, ns, won, rounds, tuples.size(),
+                     iter + 1, ms, dm.ntet, dm.nsub, dm.npts, nl, ns, won, rounds, tuples.size(),
                      exec::memory_counter<Space>().current / 1048576.0,
                      exec::memory_counter<Space>().peak / 1048576.0, failure_counts().c_str());
       }
@@ -254,13 +269,32 @@ struct Engine {
   // random share of them competes, at most a quarter of the tetrahedron count: the others
   // are not even located (the walks to far circumcentres are most of this phase then).
   void compute_splitting_points(std::size_t nl, int iter) {
-    const double share = std::min(1.0, (dm.ntet / 4.0 + 4096.0) / static_cast<double>(nl));
+    const double share = crowd_share * std::min(1.0, (dm.ntet / 4.0 + 4096.0) / static_cast<double>(nl));
     keep_below = static_cast<u64>(share * 4294967296.0);
     cand_all.resize_discard(nl);
     Ops::for_each(nl, ComputeSplittingPoints{dm.view(), params.criteria, list.data(), cand_all.data(),
                                              0x9e3779b9u * static_cast<unsigned>(iter + 1),
                                              params.strategies.worst_first, stagnant, keep_below});
     clock.template stop<Space>("split+locate");
+  }
+
+  // Crowding (S3): while the interior is still empty, cavities span hundreds of tetrahedra
+  // and a few dozen of a thousand competitors win; the others lose to them after growing
+  // their whole cavity. Next time only about kCrowd losers per winner compete (a random
+  // share, so the winners stay spread out); the share grows back as cavities shrink. Points
+  // that fail for reasons of their own (a subsegment to split first, no star) do not count.
+  void adjust_crowding(std::size_t ns, long long won) {
+    if (!params.strategies.crowding || ns == 0) return;
+    const int* f = failed.data();
+    count2.resize_discard(ns);
+    int* lost = count2.data();
+    Ops::for_each(ns, [=] GDR_HD(long long j) {
+      lost[j] = f[j] == m3d::kFailLost || f[j] == m3d::kFailTouch;
+    });
+    const double contenders = static_cast<double>(won + Ops::exclusive_scan(lost, lost, ns));
+    constexpr double kCrowd = 8, kFloor = 64, kMinShare = 1.0 / 4096;
+    const double target = kCrowd * static_cast<double>(won) + kFloor;
+    crowd_share = std::clamp(crowd_share * target / std::max(contenders, 1.0), kMinShare, 1.0);
   }
 
   // Line 7 (S3): one splitting point per neighbourhood, by priority marks, among the random

@@ -283,20 +283,38 @@ GDR_HD_INLINE void make_subface_candidate(const TetView& m, int s, unsigned id, 
     m3d::project_on_plane(pt(m, f[0]), pt(m, f[1]), pt(m, f[2]), p);
   }
   const double r2 = m3d::dist2(p, pt(m, sv[0]));
+  // The walk decides sides in one projection of the facet (the coordinate plane its normal is
+  // most nearly perpendicular to, fixed for the whole walk), with exact orient2d: the two
+  // subfaces at an edge then always agree on which side p lies. (Planes through each
+  // subface's own tetrahedron apex did not: with p a rounding off the facet, both could call
+  // it beyond their shared edge, and the walk went to and fro up to its step bound.)
+  int ax = 0, ay = 1;
+  {
+    double u1[3], u2[3], n[3];
+    for (int k = 0; k < 3; ++k) {
+      u1[k] = pt(m, sv[1])[k] - pt(m, sv[0])[k];
+      u2[k] = pt(m, sv[2])[k] - pt(m, sv[0])[k];
+    }
+    m3d::cross3(u1, u2, n);
+    const int drop = fabs(n[0]) >= fabs(n[1]) ? (fabs(n[0]) >= fabs(n[2]) ? 0 : 2) : (fabs(n[1]) >= fabs(n[2]) ? 1 : 2);
+    ax = drop == 0 ? 1 : 0;
+    ay = drop == 2 ? 1 : 2;
+  }
+  const double pp[2] = {p[ax], p[ay]};
   int u = s;
   for (int step = 0; step < step_limit; ++step) {
     const int tf = m.st[2 * u] >= 0 ? m.st[2 * u] : m.st[2 * u + 1];
     const int t = tf >> 2;
-    const int w = m.tv[4 * t + (tf & 3)];  // the apex of a tetrahedron beside u
     const int* v = m.sv + 3 * u;
     int exit = -1;
     for (int e0 = 0; e0 < 3 && exit < 0; ++e0) {
       const int e = (e0 + step) % 3;  // rotate the first edge tried: no cycling
-      const int x = v[(e + 1) % 3], y = v[(e + 2) % 3], z = v[e];
-      // p is beyond edge xy in the facet when it and z lie on opposite sides of the plane
-      // through x, y and the apex w.
-      const double side_p = pred::orient3d(pt(m, x), pt(m, y), pt(m, w), p);
-      const double side_z = pred::orient3d(pt(m, x), pt(m, y), pt(m, w), pt(m, z));
+      const double* x = pt(m, v[(e + 1) % 3]);
+      const double* y = pt(m, v[(e + 2) % 3]);
+      const double* z = pt(m, v[e]);
+      const double x2[2] = {x[ax], x[ay]}, y2[2] = {y[ax], y[ay]}, z2[2] = {z[ax], z[ay]};
+      const double side_p = pred::orient2d(x2, y2, pp);
+      const double side_z = pred::orient2d(x2, y2, z2);
       if (side_p != 0 && (side_p > 0) != (side_z > 0)) exit = e;
     }
     if (exit < 0) {
