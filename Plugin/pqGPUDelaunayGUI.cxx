@@ -8,6 +8,7 @@
 #include "pqPipelineSource.h"
 #include "pqProgressManager.h"
 #include "pqProgressWidget.h"
+#include "pqPropertiesPanel.h"
 #include "pqServerManagerModel.h"
 #include "pqView.h"
 #include "vtkAlgorithm.h"
@@ -282,35 +283,60 @@ void pqGPUDelaunayGUI::onFilterEnd(vtkObject* caller)
   // UNMODIFIED after it; showData may process events meanwhile (it does when it opens the
   // histogram's view), so a queued call would run too early. Wait for that mark instead.
   // Later Applies and renders run the filter after their mark: mark it modified now.
-  bool firstApply = proxy->modifiedState() == pqProxy::UNINITIALIZED;
-  if (!firstApply)
+  auto connections = std::make_shared<std::vector<QMetaObject::Connection>>();
+  if (proxy->modifiedState() == pqProxy::UNINITIALIZED)
+  {
+    auto first = std::make_shared<QMetaObject::Connection>();
+    *first = QObject::connect(proxy, &pqProxy::modifiedStateChanged, this,
+      [proxy, first](pqServerManagerModelItem*)
+      {
+        if (proxy && proxy->modifiedState() == pqProxy::UNMODIFIED)
+        {
+          QObject::disconnect(*first);
+          proxy->setModifiedState(pqProxy::MODIFIED);
+        }
+      });
+    connections->push_back(*first);
+  }
+  else
   {
     proxy->setModifiedState(pqProxy::MODIFIED);
   }
+  // Until it is applied again: Reset keeps it modified (its outputs are still empty), and
+  // Apply runs it even without a changed property (the views update dirty proxies only;
+  // the panel's applied(proxy) comes before that update).
   vtkWeakPointer<vtkAlgorithm> weak = algorithm;
-  auto connection = std::make_shared<QMetaObject::Connection>();
-  *connection = QObject::connect(proxy, &pqProxy::modifiedStateChanged, this,
-    [proxy, weak, connection, firstApply](pqServerManagerModelItem*) mutable
-    {
-      if (!proxy || proxy->modifiedState() != pqProxy::UNMODIFIED)
+  QWidget* main = pqCoreUtilities::mainWidget();
+  for (pqPropertiesPanel* panel :
+    main ? main->findChildren<pqPropertiesPanel*>() : QList<pqPropertiesPanel*>())
+  {
+    connections->push_back(QObject::connect(panel, &pqPropertiesPanel::resetDone, this,
+      [proxy]()
       {
-        return;
-      }
-      if (firstApply) // the aborted first Apply has ended
+        if (proxy && proxy->modifiedState() == pqProxy::UNMODIFIED)
+        {
+          proxy->setModifiedState(pqProxy::MODIFIED);
+        }
+      }));
+    connections->push_back(QObject::connect(panel,
+      QOverload<pqProxy*>::of(&pqPropertiesPanel::applied), this,
+      [proxy, weak, connections](pqProxy* applied)
       {
-        firstApply = false;
-        proxy->setModifiedState(pqProxy::MODIFIED);
-        return;
-      }
-      // Applied again: run even without a changed property (the views update dirty
-      // proxies only).
-      if (weak)
-      {
-        weak->Modified();
-      }
-      proxy->getProxy()->MarkDirty(proxy->getProxy());
-      QObject::disconnect(*connection);
-    });
+        if (!proxy || applied != proxy)
+        {
+          return;
+        }
+        if (weak)
+        {
+          weak->Modified();
+        }
+        proxy->getProxy()->MarkDirty(proxy->getProxy());
+        for (const QMetaObject::Connection& connection : *connections)
+        {
+          QObject::disconnect(connection);
+        }
+      }));
+  }
 }
 
 //-----------------------------------------------------------------------------

@@ -12,15 +12,17 @@
 # that the run ended within 10 s with an empty output and was not started again, that the
 # Apply button is lit again (OUTDIR/gui_aborted.png) and Output Messages says so. Apply
 # without a change runs the filter again; that run is aborted too (an abort in a later
-# Apply) and Apply is lit again. A larger Maximum Area typed in the panel and Apply then
-# give a mesh.
+# Apply) and Apply is lit again, and stays lit after Reset (the outputs are still empty). A
+# larger Maximum Area typed in the panel and Apply then give a mesh.
 paraview=$1; plugin=$2; input=$3; out=$4
 here=$(cd "$(dirname "$0")" && pwd)
 mkdir -p "$out"
 . "$here/gui_test_support.sh"
 export GDR_PLUGIN=$plugin GDR_INPUT=$input
 apply() { xdotool mousemove 47 424 click 1; }
-abort() { xdotool mousemove 366 748 click 1; }      # the status bar's abort button
+abort() { # the status bar's abort button; it moves with the width of the memory text
+  for x in 354 362 370 378; do xdotool mousemove $x 748 click 1; done
+}
 apply_lit() { # SCREENSHOT: the Apply button is green when enabled, grey when not
   import -window root "$1"
   [ "$(convert "$1" -format '%[fx:int(255*(p{15,424}.g-p{15,424}.r))]' info:)" -gt 20 ]
@@ -55,6 +57,8 @@ grep -q "GPUConstrainedDelaunay2D1: run aborted" "$out/gui_abort_paraview.txt" |
   fail "Output Messages does not say that the run was aborted"
 apply                                                              # no property changed
 abort_run 2
+xdotool mousemove 129 424 click 1; sleep 2                         # Reset
+apply_lit "$out/gui_reset.png" || fail "Reset after an abort put Apply out"
 xdotool mousemove 191 667 click 1 key ctrl+a type "0.001"          # Maximum Area
 xdotool key Tab; sleep 1
 apply
