@@ -66,5 +66,5 @@ wait_for "end 3 cells" 60 || fail "the third Apply gave no run"
 grep -q "end 3 cells=0" "$log" && fail "the third run gave no mesh"
 grep "end 3" "$log"
 echo "$(grep -c progress "$log") progress events"
-kill $pv
+stop_paraview
 echo "GUI progress, abort and apply again passed"
