@@ -57,6 +57,7 @@ struct ExpandListLimits {
   int defer_after_rounds = 1 << 20;  // from this round on, stop when the window is small...
   std::size_t defer_below = 0;    // ...i.e. has fewer tuples than this (S5)
   bool block_rounds = true;       // GPU: small windows run their rounds inside one block
+  bool grid_rounds = true;        // GPU: large windows run their rounds in one grid-wide launch
 };
 
 // ExpandList (Algorithm 4). H[0, initial) is the first operation window. Each round applies
@@ -77,11 +78,12 @@ ExpandListResult expand_list(Buffer<Space, Tuple>& H, std::size_t initial, Step 
         (r.rounds >= limits.defer_after_rounds && right - left < limits.defer_below))
       break;
     if constexpr (Ops<Space>::is_gpu) {
-      // Small windows (the long tails of big cavities) run their rounds inside one block.
-      // Room for the rounds' new tuples: a quarter of H (small problems stay small in memory),
-      // at least one round's worth, at most 64k tuples.
+      // Rounds run on the device without a host round trip: small windows (the long tails of
+      // big cavities) inside one block, large ones across the whole GPU.
       constexpr std::size_t kSmallWindow = 4096;
       if (limits.block_rounds && right - left <= kSmallWindow) {
+        // Room for the rounds' new tuples: a quarter of H (small problems stay small in
+        // memory), at least one round's worth, at most 64k tuples.
         const std::size_t room = std::clamp<std::size_t>(right / 4, K * (right - left),
                                                          std::size_t(1) << 16);
         H.resize(right + room);
@@ -91,6 +93,17 @@ ExpandListResult expand_list(Buffer<Space, Tuple>& H, std::size_t initial, Step 
                                              limits.defer_below, kSmallWindow);
         H.resize(right);
         if (left != before) continue;  // otherwise no round fitted: one round the normal way
+      } else if (limits.grid_rounds) {
+        // Room for one round at the most each tuple can add, and for H to grow by a
+        // sixteenth (device memory per element): the kernel stops where a round might not fit.
+        const std::size_t room = K * (right - left) + right / 16;
+        H.resize(right + room);
+        const std::size_t before = left;
+        const bool ran = Ops<Space>::template grid_rounds<K>(
+            H.data(), left, right, right + room, step, r.rounds, limits.max_rounds,
+            limits.defer_after_rounds, limits.defer_below, kSmallWindow);
+        H.resize(right);
+        if (ran && left != before) continue;
       }
     }
     const std::size_t w = right - left;

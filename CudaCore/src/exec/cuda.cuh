@@ -3,6 +3,7 @@
 #pragma once
 #include <cuda_runtime.h>
 
+#include <cooperative_groups.h>
 #include <cub/block/block_scan.cuh>
 #include <cub/device/device_scan.cuh>
 #include <algorithm>
@@ -68,6 +69,58 @@ small_rounds_kernel(Tuple* H, long long left, long long right, int rounds, long 
     io[0] = left;
     io[1] = right;
     io[2] = rounds;
+  }
+}
+
+// ExpandList rounds on large windows in one cooperative launch over the whole GPU: a round
+// costs a grid barrier instead of launches, a scan and a host round trip (the first
+// iterations of the 3D meshers grow cavities of hundreds of tetrahedra for over a hundred
+// rounds). Each block appends its tuples at an offset taken from a round counter; three
+// counters in turn (state[3..5]) let a round's counter be cleared while no block can still
+// be reading it. Stops, writing state = {left, right, rounds}, where the host loop would,
+// when the window falls to the one-block kernel's size, or when H might not hold a round.
+constexpr int kGridRoundThreads = 256;
+
+template <int K, class Tuple, class Step>
+__global__ void __launch_bounds__(kGridRoundThreads)
+grid_rounds_kernel(Tuple* H, long long* state, long long cap, Step step, int max_rounds,
+                   int defer_after_rounds, long long defer_below, long long min_window) {
+  using BlockScan = cub::BlockScan<int, kGridRoundThreads>;
+  __shared__ typename BlockScan::TempStorage scan_storage;
+  __shared__ unsigned long long block_base;
+  cooperative_groups::grid_group grid = cooperative_groups::this_grid();
+  auto* counter = reinterpret_cast<unsigned long long*>(state + 3);
+  long long left = state[0], right = state[1];
+  int rounds = static_cast<int>(state[2]);
+  for (int q = 0;; ++q) {  // every thread holds the same left/right/rounds: the exits are uniform
+    const long long w = right - left;
+    if (w <= min_window || right + w * K > cap || rounds >= max_rounds ||
+        (rounds >= defer_after_rounds && w < defer_below))
+      break;
+    if (q >= 1 && grid.thread_rank() == 0) counter[(q + 1) % 3] = 0;  // read before the last barrier
+    const long long stride = static_cast<long long>(gridDim.x) * kGridRoundThreads;
+    for (long long c = static_cast<long long>(blockIdx.x) * kGridRoundThreads; c < w; c += stride) {
+      const long long j = c + threadIdx.x;
+      Tuple out[K];
+      int n = 0;
+      if (j < w) n = step(left + j, H[left + j], out);
+      int offset, total;
+      BlockScan(scan_storage).ExclusiveSum(n, offset, total);
+      if (threadIdx.x == 0) block_base = total ? atomicAdd(&counter[q % 3], static_cast<unsigned long long>(total)) : 0;
+      __syncthreads();
+      for (int k = 0; k < n; ++k) H[right + static_cast<long long>(block_base) + offset + k] = out[k];
+      __syncthreads();  // scan storage and block_base reuse
+    }
+    grid.sync();
+    const long long added = static_cast<long long>(*reinterpret_cast<volatile unsigned long long*>(&counter[q % 3]));
+    left = right;
+    right += added;
+    ++rounds;
+  }
+  if (grid.thread_rank() == 0) {
+    state[0] = left;
+    state[1] = right;
+    state[2] = rounds;
   }
 }
 
@@ -211,6 +264,64 @@ struct Ops<Cuda> {
     left = static_cast<std::size_t>(back[0]);
     right = static_cast<std::size_t>(back[1]);
     rounds = static_cast<int>(back[2]);
+  }
+
+  // See detail::grid_rounds_kernel. Updates left, right and rounds; false where the device
+  // cannot launch it cooperatively (the caller then runs rounds the normal way).
+  template <int K, class Tuple, class Step>
+  static bool grid_rounds(Tuple* H, std::size_t& left, std::size_t& right, std::size_t cap,
+                          const Step& step, int& rounds, int max_rounds, int defer_after_rounds,
+                          std::size_t defer_below, std::size_t min_window) {
+    auto kernel = detail::grid_rounds_kernel<K, Tuple, Step>;
+    static const int blocks = [&] {
+      int device = 0, cooperative = 0, sms = 0, per_sm = 0;
+      if (cudaGetDevice(&device) != cudaSuccess ||
+          cudaDeviceGetAttribute(&cooperative, cudaDevAttrCooperativeLaunch, device) != cudaSuccess ||
+          cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device) != cudaSuccess ||
+          cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm, kernel, detail::kGridRoundThreads, 0) !=
+              cudaSuccess) {
+        cudaGetLastError();
+        return 0;
+      }
+      return cooperative ? sms * per_sm : 0;
+    }();
+    if (blocks == 0) return false;
+    // The state lives on the device (the blocks' atomics on the round counters must not
+    // cross the bus); it travels through pinned host memory before and after.
+    struct State {
+      long long* host = nullptr;
+      long long* device = nullptr;
+    };
+    static const State st = [] {
+      State r;
+      detail::cuda_check(cudaMallocHost(reinterpret_cast<void**>(&r.host), 6 * sizeof(long long)),
+                         "grid rounds");
+      detail::cuda_check(cudaMalloc(reinterpret_cast<void**>(&r.device), 6 * sizeof(long long)),
+                         "grid rounds");
+      return r;
+    }();
+    long long* state = st.host;
+    state[0] = static_cast<long long>(left);
+    state[1] = static_cast<long long>(right);
+    state[2] = rounds;
+    state[3] = state[4] = state[5] = 0;
+    detail::cuda_check(cudaMemcpyAsync(st.device, state, 6 * sizeof(long long), cudaMemcpyHostToDevice, 0),
+                       "grid rounds");
+    long long cap_ll = static_cast<long long>(cap), below = static_cast<long long>(defer_below),
+              min_w = static_cast<long long>(min_window);
+    long long* dev_state = st.device;
+    Step step_copy = step;
+    void* args[] = {&H, &dev_state, &cap_ll, &step_copy, &max_rounds, &defer_after_rounds, &below, &min_w};
+    detail::cuda_check(cudaLaunchCooperativeKernel(reinterpret_cast<const void*>(kernel), blocks,
+                                                   detail::kGridRoundThreads, args, 0, 0),
+                       "grid rounds launch");
+    detail::cuda_check(cudaMemcpyAsync(state, st.device, 3 * sizeof(long long), cudaMemcpyDeviceToHost, 0),
+                       "grid rounds");
+    detail::cuda_check(cudaStreamSynchronize(0), "grid rounds");
+    left = static_cast<std::size_t>(state[0]);
+    right = static_cast<std::size_t>(state[1]);
+    rounds = static_cast<int>(state[2]);
+    return true;
   }
 
   template <class T>

@@ -29,6 +29,7 @@ struct Strategies {
   bool deferment = true;     // S5: defer cavities still growing after a few rounds
   bool touching = true;      // cavities that touch go in together when the mesh stays Delaunay
   bool block_rounds = true;  // small ExpandList windows run their rounds inside one GPU block
+  bool grid_rounds = true;   // large ExpandList windows run their rounds in one grid-wide launch
   bool worst_first = true;   // tetrahedra bad by shape alone worst first, not larger first
   bool crowding = true;      // S3: fewer competitors while most of them lose (large cavities)
 };
@@ -342,6 +343,7 @@ struct Engine {
       lim.defer_below = ns / 64 + 32;
     }
     lim.block_rounds = params.strategies.block_rounds;
+    lim.grid_rounds = params.strategies.grid_rounds;
     point_id.resize_discard(ns);
     int* all = point_id.data();  // scratch here: the candidates that grow
     Ops::for_each(ns, [=] GDR_HD(long long j) { all[j] = static_cast<int>(j); });
@@ -375,7 +377,10 @@ struct Engine {
       const int* lost = list.data();
       Ops::for_each(nlost, [=] GDR_HD(long long k) { f[lost[k]] = 0; });
       Buf<Tuple> more;
-      grow(more, lost, nlost, exec::ExpandListLimits{});
+      exec::ExpandListLimits again_lim;
+      again_lim.block_rounds = params.strategies.block_rounds;
+      again_lim.grid_rounds = params.strategies.grid_rounds;
+      grow(more, lost, nlost, again_lim);
       verify_round(more);
       const std::size_t before = tuples.size();
       tuples.resize(before + more.size());

@@ -60,7 +60,7 @@ double smallest_volume_bound(const QualityTetOptions& o, const Surface& input) {
   return v;
 }
 
-// Design strategies switched off for a measurement: GDR_DISABLE=s1,s3,s5,touching,block_rounds,worst_first,
+// Design strategies switched off for a measurement: GDR_DISABLE=s1,s3,s5,touching,block_rounds,grid_rounds,worst_first,
 // crowding
 // (benchmarks only; see Benchmarks/README.md).
 qm3d::Strategies strategies_from_environment() {
@@ -75,12 +75,13 @@ qm3d::Strategies strategies_from_environment() {
     else if (name == "s5") s.deferment = false;
     else if (name == "touching") s.touching = false;
     else if (name == "block_rounds") s.block_rounds = false;
+    else if (name == "grid_rounds") s.grid_rounds = false;
     else if (name == "worst_first") s.worst_first = false;
     else if (name == "crowding") s.crowding = false;
     else if (name == "s4") continue;  // 2D only: the 3D engine always lists all three kinds together
     else if (!name.empty())
       throw Error(Status::InvalidInput, "GDR_DISABLE: unknown strategy '" + name +
-                                            "' (known: s1, s3, s5, touching, block_rounds, worst_first, crowding)");
+                                            "' (known: s1, s3, s5, touching, block_rounds, grid_rounds, worst_first, crowding)");
   }
   return s;
 }

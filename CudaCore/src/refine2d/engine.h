@@ -26,6 +26,7 @@ struct Strategies {
   bool deferment = true;     // S5: defer cavities still growing after a few rounds
   bool touching = true;      // cavities that touch go in together when the mesh stays Delaunay
   bool block_rounds = true;  // small ExpandList windows run their rounds inside one GPU block
+  bool grid_rounds = true;   // large ExpandList windows run their rounds in one grid-wide launch
   bool worst_first = true;   // triangles bad by shape alone smallest first, not larger first
 };
 
@@ -300,6 +301,7 @@ struct Engine {
       lim.defer_below = ns / 64 + 32;
     }
     lim.block_rounds = params.strategies.block_rounds;
+    lim.grid_rounds = params.strategies.grid_rounds;
     const exec::ExpandListResult er = exec::expand_list<Space, 3>(
         tuples, ns, GrowCavity{dm.view(), cand.data(), failed.data(), params.criteria.lens_cos2}, lim);
     // Deferred cavities must finish next time, or big ones would block their neighbourhood

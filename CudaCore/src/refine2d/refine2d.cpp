@@ -53,7 +53,7 @@ r2d::Criteria make_criteria(const Refine2dOptions& o) {
   return c;
 }
 
-// Design strategies switched off for a measurement: GDR_DISABLE=s1,s3,s4,s5,touching,block_rounds,worst_first
+// Design strategies switched off for a measurement: GDR_DISABLE=s1,s3,s4,s5,touching,block_rounds,grid_rounds,worst_first
 // (benchmarks only; see Benchmarks/README.md).
 r2d::Strategies strategies_from_environment() {
   r2d::Strategies s;
@@ -68,10 +68,11 @@ r2d::Strategies strategies_from_environment() {
     else if (name == "s5") s.deferment = false;
     else if (name == "touching") s.touching = false;
     else if (name == "block_rounds") s.block_rounds = false;
+    else if (name == "grid_rounds") s.grid_rounds = false;
     else if (name == "worst_first") s.worst_first = false;
     else if (!name.empty())
       throw Error(Status::InvalidInput, "GDR_DISABLE: unknown strategy '" + name +
-                                            "' (known: s1, s3, s4, s5, touching, block_rounds, worst_first)");
+                                            "' (known: s1, s3, s4, s5, touching, block_rounds, grid_rounds, worst_first)");
   }
   return s;
 }

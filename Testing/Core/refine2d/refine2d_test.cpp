@@ -202,7 +202,7 @@ TEST_P(Refine2d, EachStrategySwitchedOffStillGivesAValidMesh) {
   auto o = options();
   o.min_angle = 28;
   o.max_edge_length = 0.06;  // ~50k points: more bad elements than compete in one iteration
-  for (const char* name : {"s1", "s3", "s4", "s5", "touching", "block_rounds", "worst_first",
+  for (const char* name : {"s1", "s3", "s4", "s5", "touching", "block_rounds", "grid_rounds", "worst_first",
                            "s1,s3,s4,s5,touching"}) {
     SCOPED_TRACE(std::string("GDR_DISABLE=") + name);
     setenv("GDR_DISABLE", name, 1);
