@@ -30,6 +30,16 @@ __global__ void for_each_kernel(long long n, F f) {
   long long i = blockIdx.x * (long long)blockDim.x + threadIdx.x;
   if (i < n) f(i);
 }
+// One chunk of an ExpandList round in a block: thread j steps tuple left + j of the window
+// (if j < w) into out[0..n), and the block scan gives its offset among the block's `total`.
+template <int K, class BlockScan, class Tuple, class Step>
+__device__ __forceinline__ void step_chunk(const Step& step, Tuple* H, long long left, long long j,
+                                           long long w, typename BlockScan::TempStorage& storage,
+                                           Tuple (&out)[K], int& n, int& offset, int& total) {
+  n = j < w ? step(left + j, H[left + j], out) : 0;
+  BlockScan(storage).ExclusiveSum(n, offset, total);
+}
+
 // ExpandList rounds on small windows, all in one block: a round needs no launch and no
 // host round trip (cavities' long tails take hundreds of such rounds). Starts from left,
 // right, rounds and writes where it stopped to io = {left, right, rounds}: where the host
@@ -51,12 +61,9 @@ small_rounds_kernel(Tuple* H, long long left, long long right, int rounds, long 
       break;
     long long added = 0;
     for (long long c = 0; c < w; c += kSmallRoundThreads) {
-      const long long j = c + threadIdx.x;
       Tuple out[K];
-      int n = 0;
-      if (j < w) n = step(left + j, H[left + j], out);
-      int offset, total;
-      BlockScan(scan_storage).ExclusiveSum(n, offset, total);
+      int n, offset, total;
+      step_chunk<K, BlockScan>(step, H, left, c + threadIdx.x, w, scan_storage, out, n, offset, total);
       for (int k = 0; k < n; ++k) H[right + added + offset + k] = out[k];
       added += total;
       __syncthreads();  // scan storage reuse; this chunk's writes visible to the block
@@ -100,12 +107,9 @@ grid_rounds_kernel(Tuple* H, long long* state, long long cap, Step step, int max
     if (q >= 1 && grid.thread_rank() == 0) counter[(q + 1) % 3] = 0;  // read before the last barrier
     const long long stride = static_cast<long long>(gridDim.x) * kGridRoundThreads;
     for (long long c = static_cast<long long>(blockIdx.x) * kGridRoundThreads; c < w; c += stride) {
-      const long long j = c + threadIdx.x;
       Tuple out[K];
-      int n = 0;
-      if (j < w) n = step(left + j, H[left + j], out);
-      int offset, total;
-      BlockScan(scan_storage).ExclusiveSum(n, offset, total);
+      int n, offset, total;
+      step_chunk<K, BlockScan>(step, H, left, c + threadIdx.x, w, scan_storage, out, n, offset, total);
       if (threadIdx.x == 0) block_base = total ? atomicAdd(&counter[q % 3], static_cast<unsigned long long>(total)) : 0;
       __syncthreads();
       for (int k = 0; k < n; ++k) H[right + static_cast<long long>(block_base) + offset + k] = out[k];

@@ -10,6 +10,7 @@
 
 #include "exec/algorithms.h"
 #include "exec/host_vector.h"
+#include "exec/phase_clock.h"
 #include "gdr/progress.h"
 #include "gdr/qm3d.h"
 #include "mesh3d/cavity.h"
@@ -78,33 +79,6 @@ template <class Space>
 EngineResult refine_mesh(const m3d::HostTetMesh& mesh, MeshResult& out, const EngineParams& params,
                          const Callbacks& cb, m3d::HostTetMesh* final_mesh = nullptr);
 
-namespace detail {
-
-class PhaseClock {
- public:
-  explicit PhaseClock(std::vector<PhaseTime>& phases) : phases_(phases) {}
-  template <class Space>
-  void stop(const char* name) {
-    exec::Ops<Space>::synchronize();
-    const auto now = std::chrono::steady_clock::now();
-    const double s = std::chrono::duration<double>(now - last_).count();
-    last_ = now;
-    for (auto& p : phases_)
-      if (p.name == name) {
-        p.seconds += s;
-        return;
-      }
-    phases_.push_back(PhaseTime{name, s});
-  }
-  void restart() { last_ = std::chrono::steady_clock::now(); }
-
- private:
-  std::vector<PhaseTime>& phases_;
-  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
-};
-
-}  // namespace detail
-
 // One refinement run. run() is the paper's Algorithm 3; each method is one of its lines.
 // (Public members only: nvcc's device lambdas may not live in private member functions.)
 template <class Space>
@@ -117,7 +91,7 @@ struct Engine {
   const EngineParams& params;
   const Callbacks& cb;
   EngineResult res;
-  detail::PhaseClock clock{res.phases};
+  exec::PhaseClock clock{res.phases};
   m3d::DeviceTetMesh<Space> dm;
   Buf<int> list, failed, point_id, count, count2, counters;
   Buf<Candidate> cand_all, cand;  // all splitting points, then the filtered ones

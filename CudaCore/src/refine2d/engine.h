@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "exec/algorithms.h"
+#include "exec/phase_clock.h"
 #include "gdr/progress.h"
 #include "gdr/refine2d.h"
 #include "refine2d/kernels.h"
@@ -55,29 +56,6 @@ EngineResult refine_mesh(const HostMesh& mesh, MeshResult& out, const EnginePara
 
 namespace detail {
 
-class PhaseClock {
- public:
-  explicit PhaseClock(std::vector<PhaseTime>& phases) : phases_(phases) {}
-  template <class Space>
-  void stop(const char* name) {
-    exec::Ops<Space>::synchronize();
-    const auto now = std::chrono::steady_clock::now();
-    const double s = std::chrono::duration<double>(now - last_).count();
-    last_ = now;
-    for (auto& p : phases_)
-      if (p.name == name) {
-        p.seconds += s;
-        return;
-      }
-    phases_.push_back(PhaseTime{name, s});
-  }
-  void restart() { last_ = std::chrono::steady_clock::now(); }
-
- private:
-  std::vector<PhaseTime>& phases_;
-  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
-};
-
 // In-place compaction: live triangles from the tail move into the dead slots of the head,
 // so no second copy of the mesh is ever held (device memory per element).
 template <class Space>
@@ -117,7 +95,7 @@ struct Engine {
   const EngineParams& params;
   const Callbacks& cb;
   EngineResult res;
-  detail::PhaseClock clock{res.phases};
+  exec::PhaseClock clock{res.phases};
   DeviceMesh<Space> dm;
   Buf<int> list, work, failed, point_id, count, error;
   Buf<Candidate> cand_all, cand;  // all splitting points, then the filtered ones
