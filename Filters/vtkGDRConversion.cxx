@@ -504,6 +504,15 @@ void AddRunStats(const Stats& stats, vtkFieldData* fd)
   fd->AddArray(seconds);
 }
 
+// Sliver removal (SliverAngle) of the two 3D meshers: the tetrahedra beyond the angle before
+// and after smoothing.
+template <typename Stats>
+void AddSliverStats(const Stats& stats, vtkFieldData* fd)
+{
+  AddValue<vtkIdTypeArray>(fd, "SliversBefore", static_cast<vtkIdType>(stats.slivers_before));
+  AddValue<vtkIdTypeArray>(fd, "SliversAfter", static_cast<vtkIdType>(stats.slivers_after));
+}
+
 // And those of the two constrained meshers, which keep their input segments and start from
 // a constrained Delaunay triangulation.
 template <typename Stats>
@@ -542,8 +551,7 @@ void vtkGDRConversion::AddStats(const gdr::QualityTetStats& stats, vtkFieldData*
   AddValue<vtkDoubleArray>(fd, "MinimumDihedralAngleReached", stats.min_dihedral_deg);
   AddValue<vtkDoubleArray>(fd, "MaximumDihedralAngleReached", stats.max_dihedral_deg);
   AddValue<vtkDoubleArray>(fd, "MaximumRadiusEdgeRatioReached", stats.max_radius_edge);
-  AddValue<vtkIdTypeArray>(fd, "SliversBefore", static_cast<vtkIdType>(stats.slivers_before));
-  AddValue<vtkIdTypeArray>(fd, "SliversAfter", static_cast<vtkIdType>(stats.slivers_after));
+  AddSliverStats(stats, fd);
   AddValue<vtkDoubleArray>(fd, "Volume", stats.volume);
   AddValue<vtkDoubleArray>(fd, "InputVolume", stats.input_volume);
 }
@@ -573,6 +581,7 @@ void vtkGDRConversion::AddStats(const gdr::RestrictedDelaunayStats& stats, vtkFi
   AddValue<vtkDoubleArray>(fd, "MinimumDihedralAngleReached", stats.min_dihedral_deg);
   AddValue<vtkDoubleArray>(fd, "MaximumDihedralAngleReached", stats.max_dihedral_deg);
   AddValue<vtkDoubleArray>(fd, "MaximumRadiusEdgeRatioReached", stats.max_radius_edge);
+  AddSliverStats(stats, fd);
   AddValue<vtkDoubleArray>(fd, "Area", stats.area);
   AddValue<vtkDoubleArray>(fd, "Volume", stats.volume);
   AddValue<vtkDoubleArray>(fd, "InitialSeconds", stats.initial_seconds);

@@ -28,8 +28,8 @@
  * statistics (Backend, DeviceName, Iterations, SteinerPoints, ClosedInput, VolumeMeshed,
  * FeatureEdges, Corners, FeaturePoints, BadFacets, BadTetrahedra, Stalled,
  * SteinerCapReached, the criteria in effect with automatic sizes resolved as FacetAngle,
- * FacetSize, FacetDistance, CellRadiusEdgeRatio, CellSize, FeatureAngle, the qualities
- * reached, Area, Volume, the times and the per-phase times as PhaseNames / PhaseSeconds).
+ * FacetSize, FacetDistance, CellRadiusEdgeRatio, CellSize, FeatureAngle, SliversBefore and
+ * SliversAfter (SliverAngle), the qualities reached, Area, Volume, the times and the per-phase times as PhaseNames / PhaseSeconds).
  * Output (port 1, vtkPolyData): the restricted surface, triangles (outward for a closed
  * input) sharing the points of port 0 when it has tetrahedra. Cell data: MinAngle
  * (degrees, the active scalar), Size (radius of the surface Delaunay ball), Distance
@@ -44,7 +44,7 @@
  * relative to the diagonal D of the input's bounding box; 0 turns that criterion off.
  * Values the engine cannot honour (FacetAngle outside [0, 30], CellRadiusEdgeRatio in
  * (0, 1) or negative, all three facet criteria off, non-finite sizes, FeatureAngle outside
- * [0, 180), MaximumSteinerPoints below -1) are not clamped: the run is refused with an InvalidInput error, as gdr rdt
+ * [0, 180), SliverAngle outside [0, 30], MaximumSteinerPoints below -1) are not clamped: the run is refused with an InvalidInput error, as gdr rdt
  * refuses them. Errors leave empty outputs; so does an aborted run.
  */
 
@@ -139,6 +139,21 @@ public:
 
   ///@{
   /**
+   * Sliver removal after refinement, in degrees in [0, 30] (default 0: off), as
+   * vtkGPUQualityTetMesh's SliverAngle: interior points of tetrahedra with a dihedral angle
+   * below it (or above 180 minus it) move to raise the smallest dihedral angle around them,
+   * keeping CellRadiusEdgeRatio and CellSize where they were met. Only points whose
+   * tetrahedra all lie inside the surface move (surface points stay), so the surface
+   * (port 1) and the volume stay exactly as they were. The mesh is then not Delaunay where
+   * points moved. The field data SliversBefore and SliversAfter count the tetrahedra beyond
+   * the angle before and after. Volume meshing only.
+   */
+  vtkSetMacro(SliverAngle, double);
+  vtkGetMacro(SliverAngle, double);
+  ///@}
+
+  ///@{
+  /**
    * Cap on the number of inserted points; refinement stops cleanly when it is reached and
    * IsBad marks what is left above the criteria. -1 (default): an automatic cap, only
    * where termination is not guaranteed (CellRadiusEdgeRatio below 2).
@@ -174,6 +189,7 @@ protected:
   double CellSize = -1.0;
   vtkTypeBool MeshVolume = 1;
   double FeatureAngle = 0.0;
+  double SliverAngle = 0.0;
   vtkIdType MaximumSteinerPoints = -1;
   int Backend = AUTO;
 

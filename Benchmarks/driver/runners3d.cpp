@@ -231,6 +231,7 @@ Result run_gdr_rdt(const Case& c, Inputs& inputs, bool validate) {
   o.facet_distance = c.number("facet_distance", o.facet_distance);
   o.cell_radius_edge_ratio = c.number("cell_radius_edge_ratio", o.cell_radius_edge_ratio);
   o.cell_size = c.number("cell_size", o.cell_size);
+  o.sliver_angle = c.number("sliver_angle", 0);  // CGAL's optimisers are off too (optimize=0)
   o.backend = c.runner == "gdr-rdt-gpu" ? gdr::Backend::Gpu : gdr::Backend::Cpu;
   const double timeout = c.number("timeout", 600);
   const auto start = std::chrono::steady_clock::now();
@@ -265,6 +266,9 @@ Result run_gdr_rdt(const Case& c, Inputs& inputs, bool validate) {
       << " deg, " << s.bad_facets << " bad facets. ";
   if (s.stalled) msg << "refinement stalled. ";
   if (s.steiner_cap_reached) msg << "Steiner cap (" << s.steiner_cap << ") reached. ";
+  if (o.sliver_angle > 0)
+    msg << "slivers (angle beyond " << number_arg(o.sliver_angle) << " deg) " << s.slivers_before << " -> "
+        << s.slivers_after << ". ";
   r.message = msg.str();
   r.phases = "";
   for (const auto& p : s.phases) r.phases += p.name + ":" + std::to_string(p.seconds) + ";";
@@ -276,6 +280,7 @@ Result run_gdr_rdt(const Case& c, Inputs& inputs, bool validate) {
   const gdr::ValidationReport surf = gdr::validate_surface(res.mesh.points, res.mesh.subfaces, s.closed_input);
   gdr::ValidateOptions vo;
   vo.check_conformity = false;
+  vo.check_delaunay = s.sliver_moves == 0;  // smoothing moves points off Delaunay
   const gdr::ValidationReport tets = gdr::validate_tetmesh(res.mesh, nullptr, vo);
   const bool ok = surf.valid && tets.valid;
   std::fprintf(stderr, "    validated in %.2f s: %s\n", seconds_since(t0), ok ? "valid" : "INVALID");

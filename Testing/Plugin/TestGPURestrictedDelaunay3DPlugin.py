@@ -6,8 +6,8 @@ pvpython).
 
 Loads the plugin, checks the proxy's defaults, ranges, documentation and view hints, meshes
 the bundled hollow sphere (tetrahedra, surface, histograms, statistics, the facet angle
-bound), an open hemisphere made by ParaView's Sphere source (the surface alone), and a
-refused parameter (gpudelaunay.update_pipeline raises MeshingError). With --render (under
+bound), the same with SliverAngle (fewer slivers), an open hemisphere made by ParaView's
+Sphere source (the surface alone), and a refused parameter (gpudelaunay.update_pipeline raises MeshingError). With --render (under
 `xvfb-run -a pvbatch`), checks the default display and saves the crinkle-clipped mesh beside
 the two angle histograms (restricted_delaunay.png, used by docs/paraview.md).
 """
@@ -21,8 +21,8 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from plugin_test_support import check, check_documented, parse_args  # noqa: E402
 
 PROPERTIES = ("Input", "FacetAngle", "FacetSize", "FacetDistance", "FeatureAngle",
-              "CellRadiusEdgeRatio", "CellSize", "MeshVolume", "MaximumSteinerPoints",
-              "Backend")
+              "CellRadiusEdgeRatio", "CellSize", "MeshVolume", "SliverAngle",
+              "MaximumSteinerPoints", "Backend")
 
 
 def check_proxy(mesh):
@@ -32,10 +32,15 @@ def check_proxy(mesh):
           "automatic sizes by default")
     check(mesh.MeshVolume == 1 and mesh.MaximumSteinerPoints == -1, "MeshVolume, cap defaults")
     check(mesh.FeatureAngle == 0, "no features by default")
+    check(mesh.SliverAngle == 0, "no sliver pass by default")
     check(mesh.Backend == "Auto", "Backend default")
     check_documented(mesh, PROPERTIES)
     angle = mesh.GetProperty("FacetAngle").SMProperty.GetDomain("range")
     check(angle.GetMinimum(0) == 0 and angle.GetMaximum(0) == 30, "FacetAngle 0..30")
+    sliver = mesh.GetProperty("SliverAngle").SMProperty
+    check(sliver.GetDomain("range").GetMinimum(0) == 0 and sliver.GetDomain("range").GetMaximum(0) == 30,
+          "SliverAngle 0..30")
+    check(sliver.GetPanelVisibility() == "default", "SliverAngle is not advanced")
     for name in ("MaximumSteinerPoints", "Backend"):
         check(mesh.GetProperty(name).SMProperty.GetPanelVisibility() == "advanced",
               name + " is advanced")
@@ -90,6 +95,22 @@ def check_closed(mesh):
     check_histogram(table, "DihedralAngleCount", 6 * ntets)
     facets = check_histogram(table, "FacetAngleCount", ntris)
     check(all(facets.GetValue(i) == 0 for i in range(29)), "no facet angle below 29")
+
+
+def check_slivers(reader):
+    """SliverAngle: fewer tetrahedra with an angle beyond it, the volume and the surface
+    criteria as before."""
+    mesh = GPURestrictedDelaunay3D(Input=reader, FacetSize=0.25, FacetDistance=0.01,
+                                   SliverAngle=15, Backend="CPU")
+    mesh.UpdatePipeline()
+    grid = servermanager.Fetch(mesh)
+    before, after = field(grid, "SliversBefore"), field(grid, "SliversAfter")
+    print("SliverAngle 15: %d -> %d slivers" % (before, after))
+    check(before > 0 and after < before, "slivers %d -> %d" % (before, after))
+    check(abs(field(grid, "Volume") - 3.6) < 0.1, "volume %g" % field(grid, "Volume"))
+    check(field(grid, "BadTetrahedra") == 0 and field(grid, "BadFacets") == 0, "criteria met")
+    check(mesh.CellData["RadiusEdgeRatio"].GetRange()[1] <= 2.0 + 1e-6, "radius-edge bound")
+    Delete(mesh)
 
 
 def check_open():
@@ -203,6 +224,7 @@ def main():
     mesh.UpdatePipeline()
     check_closed(mesh)
     check_open()
+    check_slivers(reader)
     check_refused(reader)
     SaveData(os.path.join(args.outdir, "hollow_sphere_rdt.vtu"), proxy=mesh)
     surface_file = os.path.join(args.outdir, "hollow_sphere_rdt_surface.vtp")

@@ -1,6 +1,7 @@
 // `gdr rdt`: surface and volume meshing by restricted Delaunay refinement (gDP3d).
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -55,6 +56,12 @@ Criteria (CGAL Mesh_3's names; sizes default to fractions of the bounding box di
                            (default 2; at least 1; 0 turns it off)
   --cell-size S            largest circumradius of a tetrahedron (default: the facet size)
   A size of 0 turns that criterion off.
+  --sliver-angle DEG       after refinement, move interior points to raise dihedral angles
+                           below DEG (and above 180 - DEG), keeping --cell-radius-edge and
+                           --cell-size, as gdr tet --sliver-angle does (default off; at most
+                           30). Only points whose tetrahedra all lie inside move: the
+                           surface and the volume stay exactly as they were. The mesh is then not Delaunay where points moved, and
+                           --check skips that test
   --feature-angle DEG      keep sharp features: input edges whose triangles' normals differ
                            by more than DEG (and the boundary of an open surface) are kept
                            as chains of surface edges, their corners as vertices (default 0:
@@ -70,8 +77,9 @@ Checking and reporting:
   --check                  validate the result: the surface a closed, oriented 2-manifold
                            without self-intersections (for a closed input), the tetrahedra
                            positive with the surface as their boundary, the whole Delaunay
-                           triangulation Delaunay (exact insphere), every sharp feature a
-                           chain of surface edges; exit code 1 when invalid
+                           triangulation Delaunay (exact insphere; skipped when
+                           --sliver-angle moved points), every sharp feature a chain of
+                           surface edges; exit code 1 when invalid
   --stats-json FILE        write the options, statistics, histograms and validation as JSON
   --histogram FILE.csv     write the dihedral-angle histogram of the tetrahedra (all six
                            angles of every tetrahedron, 1-degree bins): angle_lo,angle_hi,count
@@ -82,6 +90,7 @@ Examples:
   gdr rdt scan.off -o scan.vtu --facet-size 0.5 --facet-distance 0.05 --check
   gdr rdt open_scan.ply -o open_scan.vtp
   gdr rdt part.stl -o part.mesh --cell-radius-edge 3
+  gdr rdt scan.off -o scan.vtu --sliver-angle 15 --check
   gdr rdt cad_part.off -o cad_part.vtu --feature-angle 30 --check
 
 Exit codes: 0 ok, 1 invalid mesh (--check), 2 usage error (also: an output that would
@@ -124,6 +133,7 @@ ArgsRdt parse_rdt(const std::vector<std::string>& args) {
       number("cell-radius-edge", a.options.cell_radius_edge_ratio),
       number("cell-size", a.options.cell_size),
       number("feature-angle", a.options.feature_angle),
+      number("sliver-angle", a.options.sliver_angle),
       {"surface-only", 0, false, [&](const std::string&) { a.options.mesh_volume = false; }},
       {"max-steiner", 0, true,
        [&](const std::string& v) {
@@ -152,6 +162,9 @@ ArgsRdt parse_rdt(const std::vector<std::string>& args) {
   if (a.options.facet_angle > 30)
     throw UsageError(cmd, "--facet-angle must be at most 30 (above, refinement need not terminate)");
   if (a.options.feature_angle >= 180) throw UsageError(cmd, "--feature-angle must be below 180");
+  if (a.options.sliver_angle > 30) throw UsageError(cmd, "--sliver-angle must be at most 30");
+  if (a.options.sliver_angle > 0 && !a.options.mesh_volume)
+    throw UsageError(cmd, "--sliver-angle improves tetrahedra: not with --surface-only");
   return a;
 }
 
@@ -206,8 +219,37 @@ void write_outputs(const ArgsRdt& a, const RestrictedDelaunayResult& r) {
 
 struct Reports {
   ValidationReport surface, features, tets, triangulation;
-  bool valid() const { return surface.valid && features.valid && tets.valid && triangulation.valid; }
+  // With tetrahedra: their volume, and the volume the surface encloses (the same up to
+  // rounding when the surface bounds them, smoothed or not).
+  double tet_volume = 0, enclosed_volume = 0;
+  bool volume_agrees = true;
+  bool valid() const {
+    return surface.valid && features.valid && tets.valid && triangulation.valid && volume_agrees;
+  }
 };
+
+// The volume the surface triangles enclose (signed: positive for outward triangles), from a
+// point of the surface; `scale` gets the sum of the terms' magnitudes (what rounding is
+// relative to).
+double enclosed_volume(const TetMesh& m, double& scale) {
+  double v = 0;
+  scale = 0;
+  if (m.subfaces.empty()) return 0;
+  const Point3 o = m.points[m.subfaces[0][0]];
+  for (const auto& t : m.subfaces) {
+    const Point3 &pa = m.points[t[0]], &pb = m.points[t[1]], &pc = m.points[t[2]];
+    const Point3 a{pa.x - o.x, pa.y - o.y, pa.z - o.z}, b{pb.x - o.x, pb.y - o.y, pb.z - o.z},
+        c{pc.x - o.x, pc.y - o.y, pc.z - o.z};
+    const double term = a.x * (b.y * c.z - b.z * c.y) - a.y * (b.x * c.z - b.z * c.x) + a.z * (b.x * c.y - b.y * c.x);
+    v += term;
+    scale += std::abs(term);
+  }
+  scale /= 6;
+  return v / 6;
+}
+
+// Whether --check tests the Delaunay property: not where sliver smoothing moved points.
+bool delaunay_checked(const RestrictedDelaunayResult& r) { return r.stats.sliver_moves == 0; }
 
 Reports check_mesh(const RestrictedDelaunayResult& r) {
   Reports rep;
@@ -215,7 +257,14 @@ Reports check_mesh(const RestrictedDelaunayResult& r) {
   rep.features = validate_surface_features(r.mesh.points, r.mesh.subfaces, r.mesh.subsegments, r.features);
   ValidateOptions vo;
   vo.check_conformity = false;
-  if (r.stats.volume_meshed) rep.tets = validate_tetmesh(r.mesh, nullptr, vo);
+  vo.check_delaunay = delaunay_checked(r);
+  if (r.stats.volume_meshed) {
+    rep.tets = validate_tetmesh(r.mesh, nullptr, vo);
+    rep.tet_volume = rep.tets.quality.total_measure;
+    double scale = 0;
+    rep.enclosed_volume = enclosed_volume(r.mesh, scale);
+    rep.volume_agrees = std::abs(rep.tet_volume - rep.enclosed_volume) <= 1e-9 * std::max(scale, rep.tet_volume);
+  }
   rep.triangulation = validate_tetmesh(r.triangulation, nullptr, vo);
   return rep;
 }
@@ -249,6 +298,8 @@ void print_summary(const ArgsRdt& a, const RestrictedDelaunayResult& r, const Re
     info.row({"tetrahedra", "dihedral " + fixed(s.min_dihedral_deg, 2) + ".." + fixed(s.max_dihedral_deg, 2) +
                                 " deg, max radius-edge " + fixed(s.max_radius_edge, 3) + ", volume " +
                                 fixed(s.volume, 6) + ", " + with_commas(s.bad_tets) + " bad"});
+  if (s.sliver_angle > 0)
+    info.row({"slivers", sliver_summary(s.sliver_angle, s.slivers_before, s.slivers_after, s.sliver_moves)});
   if (rep) {
     info.row({"check surface", (rep->surface.valid ? "valid: " : "INVALID: ") + rep->surface.summary()});
     if (s.feature_edges > 0)
@@ -257,12 +308,22 @@ void print_summary(const ArgsRdt& a, const RestrictedDelaunayResult& r, const Re
                                        " subsegments, " + std::to_string(rep->features.missing_segments) +
                                        " features not kept, " + std::to_string(rep->features.invalid_subsegments) +
                                        " subsegments not on the surface"});
-    if (s.volume_meshed)
+    if (s.volume_meshed) {
       info.row({"check tetrahedra", (rep->tets.valid ? "valid: " : "INVALID: ") + rep->tets.summary()});
-    info.row({"check Delaunay", (rep->triangulation.valid ? "valid: " : "INVALID: ") +
-                                    with_commas(static_cast<long long>(r.triangulation.tets.size())) +
-                                    " tetrahedra of the whole triangulation, " +
-                                    std::to_string(rep->triangulation.non_delaunay) + " faces not locally Delaunay"});
+      info.row({"check volume", std::string(rep->volume_agrees ? "valid: " : "INVALID: ") + "tetrahedra " +
+                                    fixed(rep->tet_volume, 9) + ", enclosed by the surface " +
+                                    fixed(rep->enclosed_volume, 9)});
+    }
+    const std::string whole = with_commas(static_cast<long long>(r.triangulation.tets.size())) +
+                              " tetrahedra of the whole triangulation, ";
+    if (delaunay_checked(r))
+      info.row({"check Delaunay", (rep->triangulation.valid ? "valid: " : "INVALID: ") + whole +
+                                      std::to_string(rep->triangulation.non_delaunay) +
+                                      " faces not locally Delaunay"});
+    else
+      info.row({"check Delaunay", "skipped (sliver smoothing moved " + with_commas(s.sliver_moves) +
+                                      " points): " + (rep->triangulation.valid ? "valid: " : "INVALID: ") +
+                                      whole + "positive and manifold"});
   }
   info.print(std::cout);
   Table times;
@@ -297,6 +358,7 @@ void write_stats_json(const ArgsRdt& a, const RestrictedDelaunayResult& r, const
   j.field("cell_radius_edge_ratio", s.cell_radius_edge_ratio);
   j.field("cell_size", s.cell_size);
   j.field("feature_angle", s.feature_angle);
+  j.field("sliver_angle", a.options.sliver_angle);
   j.field("mesh_volume", a.options.mesh_volume);
   j.field("max_steiner_points", a.options.max_steiner_points);
   j.field("backend", to_string(a.options.backend));
@@ -332,6 +394,9 @@ void write_stats_json(const ArgsRdt& a, const RestrictedDelaunayResult& r, const
   j.field("min_dihedral_deg", s.min_dihedral_deg);
   j.field("max_dihedral_deg", s.max_dihedral_deg);
   j.field("max_radius_edge", s.max_radius_edge);
+  j.field("slivers_before", s.slivers_before);
+  j.field("slivers_after", s.slivers_after);
+  j.field("sliver_moves", s.sliver_moves);
   j.field("area", s.area);
   j.field("volume", s.volume);
   j.field("input_seconds", s.input_seconds);
@@ -361,6 +426,8 @@ void write_stats_json(const ArgsRdt& a, const RestrictedDelaunayResult& r, const
     j.field("surface", rep->surface.summary());
     j.field("features", rep->features.summary());
     j.field("tetrahedra", s.volume_meshed ? rep->tets.summary() : std::string());
+    j.field("volume_agrees", rep->volume_agrees);
+    j.field("delaunay_checked", delaunay_checked(r));
     j.field("non_delaunay", static_cast<unsigned long long>(rep->triangulation.non_delaunay));
     j.end_object();
   }
@@ -425,6 +492,9 @@ int mesh_rdt(const ArgsRdt& a, bool& written) {
     std::fprintf(stderr, "gdr: error: the mesh is invalid\n");
     for (const ValidationReport* r : {&reports.surface, &reports.tets, &reports.triangulation})
       for (const auto& p : r->problems) std::fprintf(stderr, "  %s\n", p.c_str());
+    if (!reports.volume_agrees)
+      std::fprintf(stderr, "  the tetrahedra's volume %.17g is not the volume the surface encloses, %.17g\n",
+                   reports.tet_volume, reports.enclosed_volume);
     return kExitInvalidMesh;
   }
   return kExitOk;

@@ -191,10 +191,7 @@ void print_summary(const ArgsTet& a, const Surface& input, const QualityTetResul
                                    bound(o.min_dihedral_angle, " deg") + "), max " +
                                    fixed(s.max_dihedral_deg, 2) + " deg"});
   if (o.sliver_angle > 0)
-    info.row({"slivers", with_commas(s.slivers_before) + " tetrahedra with an angle below " +
-                             fixed(o.sliver_angle, 1) + " deg (or above " + fixed(180 - o.sliver_angle, 1) +
-                             ") before smoothing, " + with_commas(s.slivers_after) + " after (" +
-                             with_commas(s.sliver_moves) + " moves)"});
+    info.row({"slivers", sliver_summary(o.sliver_angle, s.slivers_before, s.slivers_after, s.sliver_moves)});
   info.row({"radius-edge ratio", "max " + ratio(s.max_radius_edge) + " (" +
                                      bound(o.radius_edge_ratio, "") + ")"});
   info.row({"bad tetrahedra", with_commas(s.bad_tets) + ", " + fixed(s.bad_volume_percent, 4) +

@@ -62,6 +62,10 @@ std::string backend_line(Backend used, const std::string& device_name);
 // 10-degree groups from the first group with angles to the last, as TetGen's -V statistics
 // show it; and as a CSV file angle_lo,angle_hi,count (written atomically).
 void print_dihedral_histogram(std::ostream& out, const std::vector<long long>& bins);
+
+// The summary's line on sliver removal (--sliver-angle) of gdr tet and gdr rdt: the
+// tetrahedra with an angle beyond `angle` degrees before and after smoothing, and the moves.
+std::string sliver_summary(double angle, long long before, long long after, long long moves);
 void write_dihedral_histogram_csv(const std::string& path, const std::vector<long long>& bins);
 
 }  // namespace gdr::cli

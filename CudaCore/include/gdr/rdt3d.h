@@ -41,6 +41,14 @@ struct RestrictedDelaunayOptions {
   // Refinement stops cleanly at this many Steiner points. -1 (automatic): a cap applies only
   // where termination is not guaranteed (radius-edge ratio below 2).
   long long max_steiner_points = -1;
+  // SliverAngle: sliver removal after refinement, in degrees in [0, 30] (0, the default: off).
+  // Interior Steiner points of tetrahedra with a dihedral angle below it (or above 180 minus
+  // it) move to raise the smallest dihedral angle around them (mesh3d/smooth.h, the pass gQM3d
+  // runs), keeping every tetrahedron that met CellRadiusEdgeRatio and CellSize meeting them.
+  // Only points whose tetrahedra all lie inside the surface move (surface and feature points
+  // stay): the surface (triangles, points, their measures) and the volume stay exactly as
+  // they were. The mesh is then not Delaunay where points moved. Volume meshing only.
+  double sliver_angle = 0.0;
   Backend backend = Backend::Auto;
   bool keep_triangulation = false;  // also return the whole Delaunay triangulation (checks)
 };
@@ -64,6 +72,10 @@ struct RestrictedDelaunayStats {
   bool stalled = false;
   double min_facet_angle_deg = 0, max_facet_size = 0, max_facet_distance = 0;
   double min_dihedral_deg = 0, max_dihedral_deg = 0, max_radius_edge = 0;
+  // Sliver removal (sliver_angle > 0): tetrahedra with an angle beyond it before and after,
+  // and the points moved (none: the mesh is still Delaunay).
+  long long slivers_before = 0, slivers_after = 0, sliver_moves = 0;
+  double sliver_angle = 0;                 // in effect (0 when only the surface is meshed)
   double volume = 0, area = 0;             // of the output
   double facet_angle = 0, facet_size = 0, facet_distance = 0, cell_radius_edge_ratio = 0,
          cell_size = 0, feature_angle = 0;  // the criteria in effect (automatic sizes resolved)

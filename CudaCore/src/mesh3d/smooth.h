@@ -8,11 +8,17 @@
 // with priority marks (exec/priority.h, random priorities); those that hold their whole star
 // move, so no tetrahedron changes under two moves at once. A winner climbs the smallest
 // dihedral sine of its star: it tries the centre of its link, then steps along the gradient
-// of its worst tetrahedron, and keeps a position only if it raises the star's minimum,
-// leaves every tetrahedron of the star positive (exact orient3d: the star still tiles the
+// of its worst tetrahedron, and keeps a position only if it raises the star's minimum
+// without adding slivers to the star (so their number never grows), leaves every
+// tetrahedron of the star positive (exact orient3d: the star still tiles the
 // same polyhedron, so the mesh stays valid and conforming, its volume unchanged) and every
 // one that met the mesher's bounds (`Bound`: radius-edge ratio, volume) meeting them. The mesh is no longer
 // Delaunay where vertices moved.
+//
+// Both 3D meshers run it. `Scope` says which part of the mesh it works on: gQM3d's whole mesh
+// (WholeMesh), or gDP3d's tetrahedra inside the surface (rdt3d/kernels.h), whose vertices move
+// only when every tetrahedron of their star may change (so that the restricted surface, read
+// off the tetrahedra next to it, stays as it was).
 #pragma once
 #include <cstdio>
 #include <cstdlib>
@@ -95,7 +101,8 @@ GDR_HD_INLINE int vertex_star(const TetView& m, int v, int t0, int* star) {
 }
 
 // The star's tetrahedra with v at p: the smallest dihedral sine, or -1 if one of them is not
-// positive (exact) or no longer meets the bounds it met (good[i]).
+// positive (exact) or no longer meets the bounds it met (good[i]); `below` gets how many of
+// them have a sine below the target.
 template <class Bound>
 struct StarEval {
   const TetView& m;
@@ -103,18 +110,22 @@ struct StarEval {
   const int* star;
   const bool* good;
   int n, v;
+  double target;
   GDR_HD void corners(int i, const double* p, const double** c) const {
     const int* q = m.tv + 4 * star[i];
     for (int k = 0; k < 4; ++k) c[k] = q[k] == v ? p : pt(m, q[k]);
   }
-  GDR_HD double operator()(const double* p) const {
+  GDR_HD double operator()(const double* p, int& below) const {
     double lo = 1.0;
+    below = 0;
     for (int i = 0; i < n; ++i) {
       const double* c[4];
       corners(i, p, c);
       if (!(pred::orient3d(c[0], c[1], c[2], c[3]) > 0)) return -1.0;
       if (good[i] && !bound(m, star[i], c)) return -1.0;
-      lo = fmin(lo, min_dihedral_sine(c[0], c[1], c[2], c[3]));
+      const double s = min_dihedral_sine(c[0], c[1], c[2], c[3]);
+      lo = fmin(lo, s);
+      below += s < target;
     }
     return lo;
   }
@@ -126,10 +137,12 @@ struct StarEval {
   }
 };
 
-// Moves v (whose star is star[0..n)) to a better place, if it finds one. Returns whether it
-// moved.
+// Moves v (whose star is star[0..n)) to a better place, if it finds one: one where the star's
+// smallest dihedral sine is higher and no more of its tetrahedra are below `target` (so that
+// the number of slivers never grows: moves in one round change disjoint stars). Returns
+// whether it moved.
 template <class Bound>
-GDR_HD bool smooth_vertex(const TetView& m, int v, const int* star, int n, const Bound& bound) {
+GDR_HD bool smooth_vertex(const TetView& m, int v, const int* star, int n, const Bound& bound, double target) {
   double best[3] = {m.xyz[3 * v], m.xyz[3 * v + 1], m.xyz[3 * v + 2]};
   bool good[kMaxStar];
   for (int i = 0; i < n; ++i) {
@@ -137,8 +150,9 @@ GDR_HD bool smooth_vertex(const TetView& m, int v, const int* star, int n, const
     const double* c[4] = {pt(m, q[0]), pt(m, q[1]), pt(m, q[2]), pt(m, q[3])};
     good[i] = bound(m, star[i], c);
   }
-  const StarEval<Bound> eval{m, bound, star, good, n, v};
-  double fbest = eval(best);
+  const StarEval<Bound> eval{m, bound, star, good, n, v, target};
+  int below0 = 0, below = 0;
+  double fbest = eval(best, below0);
   if (fbest < 0) return false;
   // Scale: the shortest edge at v.
   double lmin2 = INFINITY, centre[3] = {0, 0, 0};
@@ -153,8 +167,8 @@ GDR_HD bool smooth_vertex(const TetView& m, int v, const int* star, int n, const
     }
   for (int d = 0; d < 3; ++d) centre[d] /= nc;
   bool moved = false;
-  const double fc = eval(centre);
-  if (fc > fbest) {
+  const double fc = eval(centre, below);
+  if (fc > fbest && below <= below0) {
     for (int d = 0; d < 3; ++d) best[d] = centre[d];
     fbest = fc;
     moved = true;
@@ -186,8 +200,8 @@ GDR_HD bool smooth_vertex(const TetView& m, int v, const int* star, int n, const
     bool better = false;
     for (int k = 0; k < 10 && !better; ++k, step *= 0.5) {
       const double q[3] = {best[0] + step * g[0] / gl, best[1] + step * g[1] / gl, best[2] + step * g[2] / gl};
-      const double f = eval(q);
-      if (f > fbest) {
+      const double f = eval(q, below);
+      if (f > fbest && below <= below0) {
         for (int d = 0; d < 3; ++d) best[d] = q[d];
         fbest = f;
         better = true;
@@ -201,6 +215,15 @@ GDR_HD bool smooth_vertex(const TetView& m, int v, const int* star, int n, const
   return moved;
 }
 
+// Where the pass works. counts(m, t): t is one of the tetrahedra whose slivers are counted
+// and removed. in_star(m, t): a vertex whose star holds t may move (a vertex of any tetrahedron
+// for which this is false stays where it is). kEverywhere: both are always true.
+struct WholeMesh {
+  static constexpr bool kEverywhere = true;
+  GDR_HD bool counts(const TetView&, int) const { return true; }
+  GDR_HD bool in_star(const TetView&, int) const { return true; }
+};
+
 // Candidates rank in a random order that changes every round.
 struct ShuffledPriority {
   const int* vertex;
@@ -210,30 +233,45 @@ struct ShuffledPriority {
   }
 };
 
-// The smoothing rounds. `mesh` may hold dead tetrahedra (skipped); its marks are used and
-// left zero.
-template <class Space, class Bound>
-SmoothResult smooth_slivers(DeviceTetMesh<Space>& mesh, const SmoothParams& sp, const Bound& bound) {
+// The smoothing rounds, on the tetrahedra of `scope`. `mesh` may hold dead tetrahedra
+// (skipped); its marks are used and left zero.
+template <class Space, class Bound, class Scope = WholeMesh>
+SmoothResult smooth_slivers(DeviceTetMesh<Space>& mesh, const SmoothParams& sp, const Bound& bound,
+                            const Scope& scope = Scope{}) {
   using Ops = exec::Ops<Space>;
   SmoothResult res;
-  exec::Buffer<Space, int> vtet, cands, scratch, moved;
+  exec::Buffer<Space, int> vtet, cands, scratch, moved, pinned;
   vtet.resize_discard(mesh.npts);
   const double target = sp.target_sin;
+  // Vertices of tetrahedra outside the scope's stars stay (their tetrahedra do not change).
+  int* pin = nullptr;
+  if (!Scope::kEverywhere) {
+    pinned.resize_discard(mesh.npts);
+    pin = pinned.data();
+    exec::fill<Space>(pin, mesh.npts, 0);
+    const TetView m = mesh.view();
+    Ops::for_each(mesh.ntet, [=] GDR_HD(long long i) {
+      const int t = static_cast<int>(i);
+      if ((m.tflag[t] & kDead) || scope.in_star(m, t)) return;
+      for (int k = 0; k < 4; ++k) exec::atomic_or(&pin[m.tv[4 * t + k]], 1);
+    });
+  }
   auto count_slivers = [&]() {
     const TetView m = mesh.view();
     int* vt = vtet.data();
     exec::fill<Space>(vt, mesh.npts, -1);
     scratch.resize_discard(mesh.ntet);
     int* sl = scratch.data();
+    const int* pn = pin;
     Ops::for_each(mesh.ntet, [=] GDR_HD(long long i) {
       const int t = static_cast<int>(i);
       sl[t] = 0;
-      if (m.tflag[t] & kDead) return;
+      if ((m.tflag[t] & kDead) || !scope.counts(m, t)) return;
       const int* q = m.tv + 4 * t;
       if (!(min_dihedral_sine(pt(m, q[0]), pt(m, q[1]), pt(m, q[2]), pt(m, q[3])) < target)) return;
       sl[t] = 1;
       for (int k = 0; k < 4; ++k)
-        if (m.ptype[q[k]] == kFreePoint) exec::atomic_cas(&vt[q[k]], -1, t);
+        if (m.ptype[q[k]] == kFreePoint && !(pn && pn[q[k]])) exec::atomic_cas(&vt[q[k]], -1, t);
     });
     return Ops::exclusive_scan(sl, sl, mesh.ntet);
   };
@@ -264,7 +302,7 @@ SmoothResult smooth_slivers(DeviceTetMesh<Space>& mesh, const SmoothParams& sp, 
       const int n = vertex_star(m, cv[j], vt[cv[j]], star);
       for (int i = 0; i < n; ++i)
         if (m.mark[star[i]] != me + 1) return;
-      if (n > 0) mv[j] = smooth_vertex(m, cv[j], star, n, bound) ? 1 : 0;
+      if (n > 0) mv[j] = smooth_vertex(m, cv[j], star, n, bound, target) ? 1 : 0;
     });
     mesh.mark.zero();
     const long long nmoved = Ops::exclusive_scan(mv, mv, nc);

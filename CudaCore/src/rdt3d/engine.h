@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "mesh3d/smooth.h"
 #include "mesh3d/stall.h"
 #include "qm3d/engine.h"
 #include "rdt3d/kernels.h"
@@ -22,6 +23,10 @@ namespace gdr::rdt3d {
 struct EngineParams {
   Criteria criteria;
   qm3d::EngineParams insertion;  // strategies, Steiner cap (max_steiner), iteration cap
+  // Sliver removal after refinement, on the tetrahedra inside the surface (mesh3d/smooth.h,
+  // kernels.h InteriorCells): stars with a dihedral angle whose sine is below this are
+  // smoothed; 0: none.
+  double sliver_sin = 0;
 };
 
 struct EngineResult {
@@ -29,6 +34,7 @@ struct EngineResult {
   long long inserted = 0;
   bool cap_reached = false;
   bool stalled = false;
+  m3d::SmoothResult slivers;
   std::size_t peak_bytes = 0;
   std::vector<PhaseTime> phases;
 };
@@ -36,6 +42,9 @@ struct EngineResult {
 // The final triangulation (live tetrahedra, compacted), with this mesher's flags.
 struct MeshResult {
   std::vector<double> xyz;
+  // The points before the sliver pass, where it moved some (else empty): the restricted
+  // facets' measures (their duals' circumcentres) are those of the refined triangulation.
+  std::vector<double> xyz_refined;
   std::vector<std::uint8_t> ptype;
   std::vector<int> tv, tn, tflag;
   int tets() const { return static_cast<int>(tv.size() / 4); }
@@ -137,6 +146,16 @@ struct Engine {
     }
     res.inserted = core.res.inserted;
     res.cap_reached = core.res.cap_reached;
+    if (params.sliver_sin > 0 && params.criteria.volume) {
+      if (cb.abort && cb.abort()) throw Error(Status::Aborted, "refinement aborted by the caller");
+      core.clock.restart();
+      out.xyz_refined.resize(3 * std::size_t(dm.npts));
+      dm.xyz.download(out.xyz_refined.data(), out.xyz_refined.size());
+      res.slivers = m3d::smooth_slivers(dm, m3d::SmoothParams{params.sliver_sin}, MeetsCellCriteria{params.criteria},
+                                        InteriorCells{});
+      if (res.slivers.moves == 0) out.xyz_refined.clear();
+      core.clock.template stop<Space>("slivers");
+    }
     download(out);
     res.phases = core.res.phases;
     if (trace)

@@ -125,16 +125,22 @@ struct TetSize {
   bool ok = false;
 };
 
-GDR_HD_INLINE TetSize tet_size(const TetView& m, int t) {
+// Of the tetrahedron with corners p (those of a tetrahedron of the mesh, or of one whose
+// vertex the sliver pass tries somewhere else).
+GDR_HD_INLINE TetSize tet_size_of(const double* const p[4]) {
   TetSize s;
-  const int* v = m.tv + 4 * t;
   double l = INFINITY;
-  for (int e = 0; e < 6; ++e)
-    l = fmin(l, m3d::dist2(pt(m, v[m3d::edge_corner(e, 0)]), pt(m, v[m3d::edge_corner(e, 1)])));
+  for (int e = 0; e < 6; ++e) l = fmin(l, m3d::dist2(p[m3d::edge_corner(e, 0)], p[m3d::edge_corner(e, 1)]));
   s.lmin2 = l;
-  s.ok = tet_center(m, t, s.center);
-  s.r2 = s.ok ? m3d::dist2(s.center, pt(m, v[0])) : INFINITY;
+  s.ok = accurate_tet_circumcenter(p[0], p[1], p[2], p[3], s.center);
+  s.r2 = s.ok ? m3d::dist2(s.center, p[0]) : INFINITY;
   return s;
+}
+
+GDR_HD_INLINE TetSize tet_size(const TetView& m, int t) {
+  const int* v = m.tv + 4 * t;
+  const double* p[4] = {pt(m, v[0]), pt(m, v[1]), pt(m, v[2]), pt(m, v[3])};
+  return tet_size_of(p);
 }
 
 // CGAL Mesh_3's rule: a tetrahedron's circumcentre is not inserted where it would destroy a
@@ -267,6 +273,27 @@ GDR_HD_INLINE int classify_cell(const TetView& m, const Criteria& c, int t, cons
   if (c.radius_edge2 > 0 && s.r2 > c.radius_edge2 * s.lmin2) return kCellShape;
   return kCellGood;
 }
+
+// The sliver pass after refinement (mesh3d/smooth.h) works on the tetrahedra inside the
+// surface, and moves a free (interior Steiner) point only when every tetrahedron around it is
+// inside the surface. Surface points stay, so the restricted facets (flags of the faces, kept
+// as they are) keep their corners; their measures are those of the triangulation before the
+// pass (MeshResult::xyz_refined: a moved point moves the circumcentres at the ends of the
+// duals next to it), so the restricted surface stays exactly as it was. The tetrahedra keep
+// their flags: a star tiles the same polyhedron, so the tetrahedra inside fill the same
+// volume. Every cell that met the cell criteria still meets them (MeetsCellCriteria).
+struct InteriorCells {
+  static constexpr bool kEverywhere = false;
+  GDR_HD bool counts(const TetView& m, int t) const { return (m.tflag[t] & kInterior) != 0; }
+  GDR_HD bool in_star(const TetView& m, int t) const { return (m.tflag[t] & kInterior) != 0; }
+};
+
+struct MeetsCellCriteria {
+  Criteria c;
+  GDR_HD bool operator()(const TetView& m, int t, const double* const p[4]) const {
+    return classify_cell(m, c, t, tet_size_of(p)) == kCellGood;
+  }
+};
 
 // ---------------------------------------------------------------------------------------
 // Reclassification of new tetrahedra (those flagged kFresh by insertion): whether each face

@@ -4,7 +4,8 @@
 //   2. the Delaunay triangulation of the feature vertices, a sample of the other points and a
 //      bounding box (TetGen), all tetrahedra kept (line 1), feature edges split until each
 //      piece is an edge of it (a feature subsegment);
-//   3. refine on the chosen backend (lines 2-10, engine.h);
+//   3. refine on the chosen backend (lines 2-10, engine.h), then, with a sliver angle, smooth
+//      the slivers inside the surface (engine.h, mesh3d/smooth.h);
 //   4. the restricted surface and the tetrahedra inside it, with their quality.
 #include <algorithm>
 #include <chrono>
@@ -214,6 +215,8 @@ void validate_restricted_delaunay_options(const RestrictedDelaunayOptions& o) {
   if (!(o.feature_angle >= 0 && o.feature_angle < 180))
     bad("feature angle must be in [0, 180) degrees (0: no sharp features detected), got " +
         std::to_string(o.feature_angle));
+  if (!(o.sliver_angle >= 0 && o.sliver_angle <= 30))
+    bad("sliver angle must be in [0, 30] degrees (0: off), got " + std::to_string(o.sliver_angle));
   if (o.facet_angle == 0 && o.facet_size == 0 && o.facet_distance == 0)
     bad("at least one facet criterion (angle, size or distance) is needed");
 }
@@ -335,6 +338,8 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
   c.volume = st.volume_meshed ? 1 : 0;
   c.reach = 8 * diag;  // beyond the corners' box from anywhere in it
   c.feature_min2 = st.feature_min_length * st.feature_min_length;
+  st.sliver_angle = st.volume_meshed ? options.sliver_angle : 0.0;
+  params.sliver_sin = std::sin(st.sliver_angle * kPi / 180.0);
   params.insertion.max_steiner = options.max_steiner_points;
   if (options.max_steiner_points < 0 && st.volume_meshed && options.cell_radius_edge_ratio > 0 &&
       options.cell_radius_edge_ratio < 2)
@@ -391,6 +396,9 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
   st.stalled = er.stalled;
   st.phases = er.phases;
   st.steiner_points = er.inserted;
+  st.slivers_before = er.slivers.slivers_before;
+  st.slivers_after = er.slivers.slivers_after;
+  st.sliver_moves = er.slivers.moves;
   if (st.backend_used == Backend::Gpu) st.peak_device_bytes = er.peak_bytes;
   if (er.cap_reached && cb.warning)
     cb.warning("refinement stopped at the Steiner point cap (" + std::to_string(st.steiner_cap) + ")");
@@ -407,6 +415,8 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
   m.tflag = out.tflag.data();
   m.ntet = out.tets();
   m.npts = static_cast<int>(out.ptype.size());
+  m3d::TetView ms = m;
+  if (!out.xyz_refined.empty()) ms.xyz = out.xyz_refined.data();
   const rdt3d::AabbView tree = surface.view();
   // Point types as the output reports them: corners Input, the other feature vertices
   // Segment, the sample Facet (the engine typed all of them input points).
@@ -433,7 +443,10 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
     return new_id[v];
   };
   // Restricted facets, each from the tetrahedron that owns its face: measured in parallel
-  // (the surface centre is an AABB query), then numbered in tetrahedron order.
+  // (the surface centre is an AABB query), then numbered in tetrahedron order. They are
+  // measured on the refined triangulation (`ms`: where the sliver pass moved points, the
+  // points before it; the facets' corners did not move, the circumcentres at the ends of their
+  // duals may have).
   struct Facet {
     int v[3];
     double angle, size, dist, area;
@@ -457,7 +470,7 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
       Facet& fc = facets[k++];
       double x[3];
       int tri = -1;
-      fc.ok = rdt3d::surface_centre(m, tree, c, t, f, x, &tri);
+      fc.ok = rdt3d::surface_centre(ms, tree, c, t, f, x, &tri);
       if (!fc.ok) continue;
       int* v = fc.v;
       for (int q = 0; q < 3; ++q) v[q] = m.tv[4 * t + m3d::face_corner(f, q)];
@@ -476,9 +489,9 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
         const double u1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, u2[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
         double n[3], w[3];
         m3d::cross3(u1, u2, n);
-        const double* p0 = m3d::pt(m, v[0]);
-        const double* p1 = m3d::pt(m, v[1]);
-        const double* p2 = m3d::pt(m, v[2]);
+        const double* p0 = m3d::pt(ms, v[0]);
+        const double* p1 = m3d::pt(ms, v[1]);
+        const double* p2 = m3d::pt(ms, v[2]);
         const double e1[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]},
                      e2[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
         m3d::cross3(e1, e2, w);
@@ -489,8 +502,8 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
       const Point3 b{out.xyz[3 * v[1]], out.xyz[3 * v[1] + 1], out.xyz[3 * v[1] + 2]};
       const Point3 d{out.xyz[3 * v[2]], out.xyz[3 * v[2] + 1], out.xyz[3 * v[2] + 2]};
       double cc[3] = {x[0], x[1], x[2]};  // kept for a degenerate facet
-      const double* pa = m3d::pt(m, v[0]);
-      m3d::tri_circumcenter(pa, m3d::pt(m, v[1]), m3d::pt(m, v[2]), cc);
+      const double* pa = m3d::pt(ms, v[0]);
+      m3d::tri_circumcenter(pa, m3d::pt(ms, v[1]), m3d::pt(ms, v[2]), cc);
       fc.size = std::sqrt(m3d::dist2(x, pa));
       fc.dist = std::sqrt(m3d::dist2(x, cc));
       // Angles from the edge lengths (law of cosines), smallest opposite the shortest edge.
@@ -506,7 +519,7 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
       double nx[3];
       m3d::cross3(ux, vx, nx);
       fc.area = 0.5 * std::sqrt(m3d::dot3(nx, nx));
-      fc.bad = rdt3d::facet_is_bad(m, c, t, f, x) ? 1 : 0;
+      fc.bad = rdt3d::facet_is_bad(ms, c, t, f, x) ? 1 : 0;
     }
   }
   result.facet_angle_histogram.assign(61, 0);

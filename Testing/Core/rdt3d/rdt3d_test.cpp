@@ -4,9 +4,13 @@
 // closed oriented 2-manifold without self-intersections (validate_surface), surface vertices
 // on the input, the facet criteria met, and volume and area converging to the exact values.
 #include <gtest/gtest.h>
+#include <omp.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
+#include <tuple>
 
 #include "../cdt3d/surfaces.h"
 #include "gdr/backend.h"
@@ -95,7 +99,9 @@ double enclosed_volume(const Surface& s) {
 }
 
 // Every invariant this mesher promises, for a closed (volume) or open (surface only) input.
-void expect_valid(const RestrictedDelaunayResult& r, const Surface& input, bool closed, bool volume) {
+// `delaunay`: the Delaunay property too (not where the sliver pass moved points).
+void expect_valid(const RestrictedDelaunayResult& r, const Surface& input, bool closed, bool volume,
+                  bool delaunay = true) {
   const auto& st = r.stats;
   EXPECT_FALSE(st.stalled);
   EXPECT_FALSE(st.steiner_cap_reached);
@@ -107,12 +113,14 @@ void expect_valid(const RestrictedDelaunayResult& r, const Surface& input, bool 
     // Positive tetrahedra whose boundary is exactly the restricted surface.
     ValidateOptions vo;
     vo.check_conformity = false;
+    vo.check_delaunay = delaunay;
     const ValidationReport tets = validate_tetmesh(r.mesh, nullptr, vo);
     EXPECT_TRUE(tets.valid) << tets.summary();
   }
   if (!r.triangulation.tets.empty()) {
     ValidateOptions vo;
     vo.check_conformity = false;
+    vo.check_delaunay = delaunay;
     const ValidationReport all = validate_tetmesh(r.triangulation, nullptr, vo);
     EXPECT_TRUE(all.valid) << all.summary();
     EXPECT_EQ(all.non_delaunay, 0u);
@@ -572,6 +580,127 @@ TEST_P(RestrictedDelaunayOnBackend, ThinWedgeTerminatesWithExceptions) {
   EXPECT_TRUE(all.valid) << all.summary();
   EXPECT_EQ(all.non_delaunay, 0u);
   EXPECT_NEAR(r.stats.volume, h * 0.5, 0.05 * h * 0.5);
+}
+
+// Sliver removal (sliver_angle): interior points move, and only they. The mesh stays valid
+// (positive tetrahedra bounded by the restricted surface, a closed 2-manifold on the input),
+// the surface and the volume stay as they were, every cell still meets the cell criteria, and
+// the tetrahedra with an angle beyond the target become fewer while the smallest angle does
+// not get worse. On the CPU with one thread, where a run repeats itself, the surface is
+// compared with the same run without the pass: the same triangles on the same points, bit
+// for bit, with the same measures.
+long long beyond(const RestrictedDelaunayResult& r, double angle) {
+  long long n = 0;
+  for (std::size_t t = 0; t < r.min_dihedral.size(); ++t) n += r.min_dihedral[t] < angle || r.max_dihedral[t] > 180 - angle;
+  return n;
+}
+
+// One OpenMP thread while it lives (when `on`): the CPU backend then repeats a run exactly.
+struct OneThread {
+  int was = omp_get_max_threads();
+  bool on;
+  explicit OneThread(bool o) : on(o) {
+    if (on) omp_set_num_threads(1);
+  }
+  ~OneThread() {
+    if (on) omp_set_num_threads(was);
+  }
+};
+
+// The surface triangles, each as its three corners' coordinates from its smallest, sorted.
+std::vector<std::array<double, 9>> surface_of(const RestrictedDelaunayResult& r) {
+  std::vector<std::array<double, 9>> out;
+  for (const auto& t : r.mesh.subfaces) {
+    int k = 0;
+    for (int i = 1; i < 3; ++i) {
+      const Point3 &p = r.mesh.points[t[i]], &q = r.mesh.points[t[k]];
+      if (std::tie(p.x, p.y, p.z) < std::tie(q.x, q.y, q.z)) k = i;
+    }
+    std::array<double, 9> c;
+    for (int i = 0; i < 3; ++i) {
+      const Point3& p = r.mesh.points[t[(k + i) % 3]];
+      c[3 * i] = p.x, c[3 * i + 1] = p.y, c[3 * i + 2] = p.z;
+    }
+    out.push_back(c);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+TEST_P(RestrictedDelaunayOnBackend, SliverPassMovesInteriorPointsOnly) {
+  const double target = 15;
+  const Surface s = torus(1, 0.35, 96, 48);
+  RestrictedDelaunayOptions o = sizes(GetParam(), 0.1, 0.01, 0.1);
+  const OneThread one(GetParam() == Backend::Cpu);
+  const RestrictedDelaunayResult plain = restricted_delaunay_3d(s, o, {});
+  o.sliver_angle = target;
+  const RestrictedDelaunayResult r = restricted_delaunay_3d(s, o, {});
+  const auto& st = r.stats;
+  EXPECT_EQ(st.sliver_angle, target);
+  EXPECT_EQ(plain.stats.sliver_moves, 0);
+  EXPECT_EQ(plain.stats.slivers_before, 0);  // not counted without the pass
+  // Valid: everything expect_valid checks but the Delaunay property (points moved).
+  ASSERT_FALSE(r.triangulation.tets.empty());
+  expect_valid(r, s, true, true, false);
+  // The volume is the one the surface encloses: the surface still bounds the tetrahedra.
+  Surface out;
+  out.points = r.mesh.points;
+  out.triangles = r.mesh.subfaces;
+  EXPECT_NEAR(st.volume, enclosed_volume(out), 1e-12 * st.volume);
+  // The cell criteria still hold (expect_valid: no bad cell), the radius-edge bound too.
+  EXPECT_LE(st.max_radius_edge, 2.0 * (1 + 1e-6));
+  // Fewer slivers, as reported and as the output's angle arrays count them.
+  std::printf("%s sliver pass: %lld -> %lld tetrahedra beyond %.0f deg (%lld moves), min dihedral %.3f -> %.3f deg\n",
+              to_string(GetParam()), st.slivers_before, st.slivers_after, target, st.sliver_moves,
+              plain.stats.min_dihedral_deg, st.min_dihedral_deg);
+  EXPECT_GT(st.sliver_moves, 0);
+  EXPECT_LT(st.slivers_after, st.slivers_before);
+  EXPECT_NEAR(double(beyond(r, target)), double(st.slivers_after), 2.0);  // float arrays against doubles
+  if (GetParam() != Backend::Cpu) return;  // the GPU's runs differ from each other
+  // The same refinement: the same surface, bit for bit, and the same volume.
+  EXPECT_EQ(plain.stats.steiner_points, st.steiner_points);
+  EXPECT_EQ(plain.mesh.tets.size(), r.mesh.tets.size());
+  EXPECT_EQ(plain.mesh.points.size(), r.mesh.points.size());
+  EXPECT_TRUE(surface_of(plain) == surface_of(r)) << "the surface changed";
+  // Only interior (free) points moved, and some did.
+  ASSERT_EQ(plain.mesh.point_type, r.mesh.point_type);
+  long long moved = 0;
+  for (std::size_t v = 0; v < r.mesh.points.size(); ++v) {
+    const Point3 &p = plain.mesh.points[v], &q = r.mesh.points[v];
+    const bool same = p.x == q.x && p.y == q.y && p.z == q.z;
+    moved += !same;
+    if (r.mesh.point_type[v] != PointType::Free) EXPECT_TRUE(same) << "point " << v;
+  }
+  EXPECT_GT(moved, 0);
+  EXPECT_LE(moved, st.sliver_moves);
+  EXPECT_EQ(plain.facet_size, r.facet_size);
+  EXPECT_EQ(plain.facet_distance, r.facet_distance);
+  EXPECT_NEAR(st.volume, plain.stats.volume, 1e-12 * plain.stats.volume);
+  EXPECT_NEAR(double(st.slivers_before), double(beyond(plain, target)), 2.0);
+  EXPECT_LT(beyond(r, target), beyond(plain, target));
+  EXPECT_GE(st.min_dihedral_deg, plain.stats.min_dihedral_deg);
+}
+
+// The pass is off for a surface only, and an angle beyond 30 degrees is refused.
+TEST(RestrictedDelaunay, SliverAngleRange) {
+  const Surface s = test::icosphere(3);
+  RestrictedDelaunayOptions o = sizes(Backend::Cpu, 0.3, 0.03, 0.3);
+  o.sliver_angle = 31;
+  try {
+    restricted_delaunay_3d(s, o, {});
+    FAIL() << "a sliver angle above 30 degrees was accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.status(), Status::InvalidInput);
+    EXPECT_NE(std::string(e.what()).find("sliver angle"), std::string::npos) << e.what();
+  }
+  o.sliver_angle = -1;
+  EXPECT_THROW(restricted_delaunay_3d(s, o, {}), Error);
+  o.sliver_angle = 15;
+  o.mesh_volume = false;
+  const RestrictedDelaunayResult r = restricted_delaunay_3d(s, o, {});
+  EXPECT_EQ(r.stats.sliver_angle, 0);
+  EXPECT_EQ(r.stats.sliver_moves, 0);
+  expect_valid(r, s, true, false);
 }
 
 TEST(RestrictedDelaunay, RefusesWhatCannotTerminate) {
