@@ -125,7 +125,7 @@ Result run_gdr(const Case& c, Inputs& inputs, double max_edge, bool validate) {
     };
     last = gdr::Refine2dResult{};  // free the previous mesh before the next run
     // Strategy ablation: the engine reads GDR_DISABLE (s1, s3, s4, s5, touching, block_rounds,
-    // worst_first).
+    // grid_rounds, worst_first).
     const std::string disable = c.text("disable", "");
     if (disable.empty()) unsetenv("GDR_DISABLE");
     else setenv("GDR_DISABLE", disable.c_str(), 1);
