@@ -236,19 +236,19 @@ def refine_2d(points, segments=None, holes=None, min_angle=20.0, max_area=None,
     from .GPUDelaunayFilters import vtkGPUConstrainedDelaunay2D
 
     if isinstance(points, dict):
-        if segments is None:
-            segments = points.get("segments")
-        if holes is None:
-            holes = points.get("holes")
-        if regions is None:
-            regions = points.get("regions")
-        if point_markers is None:
-            point_markers = points.get("vertex_markers")
-        if segment_markers is None:
-            segment_markers = points.get("segment_markers")
-        if point_attributes is None:
-            point_attributes = points.get("vertex_attributes")
-        points = points["vertices"]
+        # A `triangle`-style dict; arguments given explicitly take precedence over its keys.
+        given = points
+
+        def pick(value, key):
+            return given.get(key) if value is None else value
+
+        segments = pick(segments, "segments")
+        holes = pick(holes, "holes")
+        regions = pick(regions, "regions")
+        point_markers = pick(point_markers, "vertex_markers")
+        segment_markers = pick(segment_markers, "segment_markers")
+        point_attributes = pick(point_attributes, "vertex_attributes")
+        points = given["vertices"]
     points = _array(points, "points", (2, 3), np.float64)
     if segments is not None:
         segments = _array(segments, "segments", (2,), np.int64)
