@@ -4,6 +4,9 @@
 
 namespace gdr::qm3d {
 
+// GDR_DISABLE's strategies switched off (quality_tet_mesh.cpp); all on without it.
+Strategies strategies_from_environment();
+
 EngineResult refine_mesh_cpu(const m3d::HostTetMesh& mesh, MeshResult& out,
                              const EngineParams& params, const Callbacks& cb,
                              m3d::HostTetMesh* final_mesh = nullptr);

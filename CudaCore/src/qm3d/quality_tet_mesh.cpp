@@ -60,32 +60,6 @@ double smallest_volume_bound(const QualityTetOptions& o, const Surface& input) {
   return v;
 }
 
-// Design strategies switched off for a measurement: GDR_DISABLE=s1,s3,s5,touching,block_rounds,grid_rounds,worst_first,
-// crowding
-// (benchmarks only; see Benchmarks/README.md).
-qm3d::Strategies strategies_from_environment() {
-  qm3d::Strategies s;
-  const char* env = std::getenv("GDR_DISABLE");
-  if (!env) return s;
-  std::stringstream list(env);
-  std::string name;
-  while (std::getline(list, name, ',')) {
-    if (name == "s1") s.compaction = false;
-    else if (name == "s3") s.filtering = false;
-    else if (name == "s5") s.deferment = false;
-    else if (name == "touching") s.touching = false;
-    else if (name == "block_rounds") s.block_rounds = false;
-    else if (name == "grid_rounds") s.grid_rounds = false;
-    else if (name == "worst_first") s.worst_first = false;
-    else if (name == "crowding") s.crowding = false;
-    else if (name == "s4") continue;  // 2D only: the 3D engine always lists all three kinds together
-    else if (!name.empty())
-      throw Error(Status::InvalidInput, "GDR_DISABLE: unknown strategy '" + name +
-                                            "' (known: s1, s3, s5, touching, block_rounds, grid_rounds, worst_first, crowding)");
-  }
-  return s;
-}
-
 // Rough output size, for Auto and for the automatic cap: a quality mesh has about six
 // tetrahedra per point and at least the CDT's; a volume bound asks for volume / bound more.
 std::size_t estimate_tets(const m3d::HostTetMesh& m, double volume, double max_volume) {
@@ -116,6 +90,36 @@ long long automatic_steiner_cap(const m3d::HostTetMesh& m, std::size_t estimated
 }
 
 }  // namespace
+
+namespace qm3d {
+
+// Design strategies switched off for a measurement: GDR_DISABLE=s1,s3,s5,touching,
+// block_rounds,grid_rounds,worst_first,crowding (benchmarks only; see Benchmarks/README.md).
+// Both 3D meshers read it.
+Strategies strategies_from_environment() {
+  Strategies s;
+  const char* env = std::getenv("GDR_DISABLE");
+  if (!env) return s;
+  std::stringstream list(env);
+  std::string name;
+  while (std::getline(list, name, ',')) {
+    if (name == "s1") s.compaction = false;
+    else if (name == "s3") s.filtering = false;
+    else if (name == "s5") s.deferment = false;
+    else if (name == "touching") s.touching = false;
+    else if (name == "block_rounds") s.block_rounds = false;
+    else if (name == "grid_rounds") s.grid_rounds = false;
+    else if (name == "worst_first") s.worst_first = false;
+    else if (name == "crowding") s.crowding = false;
+    else if (name == "s4") continue;  // 2D only: the 3D engine always lists all three kinds together
+    else if (!name.empty())
+      throw Error(Status::InvalidInput, "GDR_DISABLE: unknown strategy '" + name +
+                                            "' (known: s1, s3, s5, touching, block_rounds, grid_rounds, worst_first, crowding)");
+  }
+  return s;
+}
+
+}  // namespace qm3d
 
 void validate_quality_tet_input(const Surface& input, const QualityTetOptions& o) {
   (void)input;
@@ -177,7 +181,7 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
   params.max_steiner = automatic_steiner_cap(mesh, estimated, options);
   st.steiner_cap = params.max_steiner;
   st.automatic_steiner_cap = options.max_steiner_points < 0 && params.max_steiner >= 0;
-  params.strategies = strategies_from_environment();
+  params.strategies = qm3d::strategies_from_environment();
   if (!options.refine) params.max_iterations = 0;
   params.sliver_sin = options.refine ? std::sin(options.sliver_angle * kPi / 180.0) : 0.0;
   params.check_links = std::getenv("GDR_CHECK_LINKS") != nullptr;  // debugging: slow, checks every link each iteration

@@ -23,6 +23,7 @@
 #include "gdr/validate.h"
 #include "mesh3d/scale.h"
 #include "mesh3d/tet_topology.h"
+#include "qm3d/engine_dispatch.h"
 #include "rdt3d/engine_dispatch.h"
 #include "rdt3d/features.h"
 
@@ -340,6 +341,7 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
   c.feature_min2 = st.feature_min_length * st.feature_min_length;
   st.sliver_angle = st.volume_meshed ? options.sliver_angle : 0.0;
   params.sliver_sin = std::sin(st.sliver_angle * kPi / 180.0);
+  params.insertion.strategies = qm3d::strategies_from_environment();
   params.insertion.max_steiner = options.max_steiner_points;
   if (options.max_steiner_points < 0 && st.volume_meshed && options.cell_radius_edge_ratio > 0 &&
       options.cell_radius_edge_ratio < 2)
