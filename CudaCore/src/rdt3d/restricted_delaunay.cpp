@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <map>
 #include <new>
 #include <random>
@@ -359,7 +360,8 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
   // is not a face of the mesh, a folded surface) where the CPU path passes. Auto takes the
   // CPU for them; the GPU is refused rather than trusted.
   Backend requested = options.backend;
-  if (!features.edges.empty()) {
+  // GDR_GPU_FEATURES=1 runs them on the GPU anyway: for diagnosing that path only.
+  if (!features.edges.empty() && !std::getenv("GDR_GPU_FEATURES")) {
     if (requested == Backend::Gpu)
       throw Error(Status::InvalidInput,
                   "sharp features (" + std::to_string(features.edges.size()) +
