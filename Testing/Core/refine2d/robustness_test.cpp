@@ -6,6 +6,7 @@
 #include <cmath>
 #include <string>
 
+#include "gdr/backend.h"
 #include "gdr/refine2d.h"
 #include "gdr/validate.h"
 
@@ -29,12 +30,13 @@ Pslg square_in_square(double s) {
   return g;
 }
 
-gdr::Refine2dOptions cpu(double min_angle) {
+gdr::Refine2dOptions on(gdr::Backend backend, double min_angle) {
   gdr::Refine2dOptions o;
   o.min_angle = min_angle;
-  o.backend = gdr::Backend::Cpu;
+  o.backend = backend;
   return o;
 }
+gdr::Refine2dOptions cpu(double min_angle) { return on(gdr::Backend::Cpu, min_angle); }
 
 std::string error_of(const Pslg& g, const gdr::Refine2dOptions& o, gdr::Status* status) {
   try {
@@ -58,12 +60,19 @@ bool finite_quality(const gdr::QualityStats& q) {
 // (the validator decides with exact predicates at any magnitude) and 45 degrees at a 30
 // degree bound (the predicates' underflow used to give 21.8 degrees and non-Delaunay edges).
 // Scaled by a power of two, the points are the unscaled mesh's times that power exactly.
-TEST(Refine2dScale, ExtremeMagnitudesMeshAsTheUnscaledInput) {
-  const gdr::Refine2dResult unit = gdr::refine_2d(square_in_square(1), cpu(30));
+// The same on both backends (the GPU test skips itself without a usable device).
+class Refine2dScaleOn : public ::testing::TestWithParam<gdr::Backend> {};
+INSTANTIATE_TEST_SUITE_P(Backends, Refine2dScaleOn, ::testing::Values(gdr::Backend::Cpu, gdr::Backend::Gpu),
+                         [](const auto& info) { return info.param == gdr::Backend::Gpu ? "gpu" : "cpu"; });
+
+TEST_P(Refine2dScaleOn, ExtremeMagnitudesMeshAsTheUnscaledInput) {
+  if (GetParam() == gdr::Backend::Gpu && !gdr::gpu_available())
+    GTEST_SKIP() << "no usable CUDA device: " << gdr::device_info().reason;
+  const gdr::Refine2dResult unit = gdr::refine_2d(square_in_square(1), on(GetParam(), 30));
   EXPECT_NEAR(unit.stats.min_angle_deg, 45, 1e-9);
   for (double s : {1e-90, 1e-120, 1e-160, 1e-200, 1e-300, 1e78, 1e120, 1e150, 1e300}) {
     const Pslg g = square_in_square(s);
-    const gdr::Refine2dResult r = gdr::refine_2d(g, cpu(30));
+    const gdr::Refine2dResult r = gdr::refine_2d(g, on(GetParam(), 30));
     gdr::ValidateOptions vo;
     vo.min_angle_deg = 30;
     const gdr::ValidationReport v = gdr::validate_trimesh(r.mesh, &g, vo);
@@ -75,7 +84,7 @@ TEST(Refine2dScale, ExtremeMagnitudesMeshAsTheUnscaledInput) {
     EXPECT_TRUE(finite_quality(v.quality)) << s << ": " << v.summary();
   }
   for (int e : {-1000, -500, 500, 1000}) {
-    const gdr::Refine2dResult r = gdr::refine_2d(square_in_square(std::ldexp(1.0, e)), cpu(30));
+    const gdr::Refine2dResult r = gdr::refine_2d(square_in_square(std::ldexp(1.0, e)), on(GetParam(), 30));
     ASSERT_EQ(r.mesh.points.size(), unit.mesh.points.size()) << e;
     for (std::size_t i = 0; i < r.mesh.points.size(); ++i) {
       EXPECT_EQ(r.mesh.points[i].x, std::ldexp(unit.mesh.points[i].x, e)) << e << " " << i;
@@ -85,11 +94,13 @@ TEST(Refine2dScale, ExtremeMagnitudesMeshAsTheUnscaledInput) {
 }
 
 // A box of +-1e54 around a 2x2 square: refinement grades out and ends (it never did).
-TEST(Refine2dScale, HugeBoxAroundASmallSquareEnds) {
+TEST_P(Refine2dScaleOn, HugeBoxAroundASmallSquareEnds) {
+  if (GetParam() == gdr::Backend::Gpu && !gdr::gpu_available())
+    GTEST_SKIP() << "no usable CUDA device: " << gdr::device_info().reason;
   Pslg g;
   add_loop(g, {{-1e54, -1e54}, {1e54, -1e54}, {1e54, 1e54}, {-1e54, 1e54}});
   add_loop(g, {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}});
-  const gdr::Refine2dResult r = gdr::refine_2d(g, cpu(25));
+  const gdr::Refine2dResult r = gdr::refine_2d(g, on(GetParam(), 25));
   EXPECT_FALSE(r.stats.steiner_cap_reached);
   EXPECT_EQ(r.stats.bad_triangles, 0);
   EXPECT_LT(r.stats.output_points, 20000);
