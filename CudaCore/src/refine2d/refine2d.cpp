@@ -7,6 +7,7 @@
 #include <cfloat>
 #include <climits>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <new>
@@ -223,6 +224,100 @@ long long steiner_cap(int cdt_points, const SizeEstimate& e, double capacity,
     return static_cast<long long>(std::min(static_cast<double>(o.max_steiner_points), numbered));
   const double wanted = std::max({1000.0 * cdt_points, 1e6, 4.0 * e.typical});
   return static_cast<long long>(std::max(0.0, std::min(wanted, capacity / 2 - cdt_points)));
+}
+
+// Thin parts (issue 9): where two segments (or convex-hull edges) that share no endpoint run
+// side by side at a width w, every triangle between them whose angles are all at least theta
+// has an area of at most w^2 / tan(theta), so a strip of length L needs at least about
+// L tan(theta) / w of them (a 1 x 1e-4 rectangle takes 0.31, 0.72 and 1.23 times L / w
+// triangles at 10, 20 and 33 degrees: 1.8-1.9 tan(theta) L / w). Small input angles do not
+// count: segments that meet at a vertex never make a pair, so what the small-angle rule leaves
+// bad is not asked for. Rays go from 8 points of each subsegment of the CDT along its inward
+// normal to the first subsegment they meet (at most 64 triangles away); where that one shares
+// no endpoint with the first, the stretch of the ray's eighth that both cover counts, at the
+// larger of the two widths at its ends (the width is linear along it). Each strip is seen
+// from both sides, each side counting a quarter of tan(theta) L / w: a lower bound about 4
+// times below what refinement makes, so that only what certainly cannot be meshed is refused.
+struct ThinEstimate {
+  double triangles = 0;  // at least this many triangles in thin parts
+  double width = 0;      // the thinnest part's width and its length, scaled units
+  double length = 0;
+};
+
+ThinEstimate estimate_thin_parts(const r2d::HostMesh& m, double tan_theta) {
+  ThinEstimate est;
+  if (!(tan_theta > 0)) return est;
+  constexpr int kSamples = 8, kMaxSteps = 64;
+  const auto P = [&](int v) { return &m.xy[2 * std::size_t(v)]; };
+  const auto incident = [&](int s, int u) {
+    const int a = m.seg[2 * s], b = m.seg[2 * s + 1], c = m.seg[2 * u], d = m.seg[2 * u + 1];
+    return s == u || a == c || a == d || b == c || b == d;
+  };
+  double thinnest_credit = 0;
+  for (int t = 0; t < m.triangles(); ++t)
+    for (int e = 0; e < 3; ++e) {
+      const int s = m.ts[3 * t + e];
+      if (s < 0) continue;
+      const double* a = P(m.tv[3 * t + (e + 1) % 3]);
+      const double* b = P(m.tv[3 * t + (e + 2) % 3]);
+      const double ux = b[0] - a[0], uy = b[1] - a[1], len = std::sqrt(ux * ux + uy * uy);
+      if (!(len > 0)) continue;
+      const double nx = -uy / len, ny = ux / len;  // inward: the triangle is counter-clockwise
+      for (int i = 0; i < kSamples; ++i) {
+        const double f = (i + 0.5) / kSamples;
+        const double o[2] = {a[0] + f * ux, a[1] + f * uy};
+        int u = t, entry = e, hit = -1;
+        for (int step = 0; step < kMaxSteps && hit < 0; ++step) {
+          int exit = -1;
+          for (int j = 0; j < 3; ++j) {
+            if (j == entry) continue;
+            const double* p = P(m.tv[3 * u + (j + 1) % 3]);
+            const double* q = P(m.tv[3 * u + (j + 2) % 3]);
+            // Sides of p and q across the ray's line; the ray leaves through the edge whose
+            // endpoints lie on both sides of it.
+            const double sp = (p[0] - o[0]) * ny - (p[1] - o[1]) * nx;
+            const double sq = (q[0] - o[0]) * ny - (q[1] - o[1]) * nx;
+            if ((sp <= 0 && sq >= 0) || (sp >= 0 && sq <= 0)) {
+              exit = j;
+              break;
+            }
+          }
+          if (exit < 0) break;
+          if (m.ts[3 * u + exit] >= 0) {
+            hit = m.ts[3 * u + exit];
+            break;
+          }
+          const int nb = m.tn[3 * u + exit];
+          if (nb < 0) break;
+          u = nb / 3;
+          entry = nb % 3;
+        }
+        if (hit < 0 || incident(s, hit)) continue;
+        // The other segment's endpoints in the frame of ab: along it (in units of len) and
+        // their heights over it.
+        const double* c = P(m.seg[2 * hit]);
+        const double* d = P(m.seg[2 * hit + 1]);
+        const double tc = ((c[0] - a[0]) * ux + (c[1] - a[1]) * uy) / (len * len);
+        const double td = ((d[0] - a[0]) * ux + (d[1] - a[1]) * uy) / (len * len);
+        const double hc = (c[0] - a[0]) * nx + (c[1] - a[1]) * ny;
+        const double hd = (d[0] - a[0]) * nx + (d[1] - a[1]) * ny;
+        if (!(std::fabs(td - tc) > 0)) continue;  // perpendicular to ab: no strip
+        const double u0 = std::max(double(i) / kSamples, std::min(tc, td));
+        const double u1 = std::min(double(i + 1) / kSamples, std::max(tc, td));
+        if (!(u1 > u0)) continue;
+        const auto gap = [&](double v) { return hc + (hd - hc) * (v - tc) / (td - tc); };
+        const double w = std::max(gap(u0), gap(u1));
+        if (!(w > 0) || !std::isfinite(w)) continue;
+        const double credit = (u1 - u0) * len * tan_theta / (4.0 * w);
+        est.triangles += credit;
+        if (credit > thinnest_credit) {
+          thinnest_credit = credit;
+          est.width = w;
+          est.length = (std::min(1.0, std::max(tc, td)) - std::max(0.0, std::min(tc, td))) * len;
+        }
+      }
+    }
+  return est;
 }
 
 // Exact rescaling (as gQM3d does): the input is multiplied by 2^k, which brings its largest
@@ -450,6 +545,25 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
     params.max_steiner = steiner_cap(cdt_points, estimate, capacity, options);
     st.steiner_cap = params.max_steiner;
     st.automatic_steiner_cap = options.max_steiner_points < 0;
+    // Thin parts that certainly need more points than the automatic cap allows are refused
+    // before any time is spent on them (a 1 x 1e-11 rectangle at 25 degrees ran 15-40 s to
+    // the cap of 1M); a cap of the caller's own meshes them up to that cap.
+    if (options.min_angle > 0 && st.automatic_steiner_cap) {
+      const ThinEstimate thin = estimate_thin_parts(mesh, std::tan(options.min_angle * kPi / 180.0));
+      const double points = 0.5 * thin.triangles;  // about 2 triangles per point, or fewer
+      if (std::getenv("GDR_TRACE"))
+        std::fprintf(stderr, "gdr-trace thin parts: at least %.3g triangles (thinnest %.3g wide)\n",
+                     thin.triangles, thin.width);
+      if (points > static_cast<double>(params.max_steiner))
+        throw Error(Status::InvalidInput,
+                    "the minimum angle of " + rounded(user_options.min_angle) +
+                        " degrees asks for at least " + rounded(points) +
+                        " Steiner points in the input's thin parts (the thinnest " +
+                        rounded(std::ldexp(thin.width, -scale.k)) + " wide along " +
+                        rounded(std::ldexp(thin.length, -scale.k)) +
+                        "), more than the automatic cap of " + rounded(double(params.max_steiner)) +
+                        ": lower the angle, or set --max-steiner to mesh up to a cap");
+    }
   }
   params.strategies = strategies_from_environment();
   if (!options.refine) params.max_iterations = 0;
