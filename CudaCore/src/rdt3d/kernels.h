@@ -100,6 +100,20 @@ GDR_HD_INLINE bool owns_face(const TetView& m, int t, int f) {
   return nb < 0 || t < (nb >> 2);
 }
 
+// With a volume, do the two tetrahedra of face f of t lie on the same side of the surface
+// (beyond the hull: outside)? A restricted facet should separate the inside from the outside,
+// but the two tests differ where its dual only touches the surface (a circumcentre exactly on
+// a plane of the input: CAD parts with dyadic coordinates give it) or crosses it twice (clips
+// a sharp edge or a thin part): such a facet bounds nothing (issue 12). False without a
+// volume (no tetrahedron is inside then).
+GDR_HD_INLINE bool same_side(const TetView& m, const Criteria& c, int t, int f) {
+  if (!c.volume) return false;
+  const int nb = m.tn[4 * t + f];
+  const bool in_t = (m.tflag[t] & kInterior) != 0;
+  const bool in_u = nb >= 0 && (m.tflag[nb >> 2] & kInterior) != 0;
+  return in_t == in_u;
+}
+
 // Facet criteria (CGAL Mesh_3's names) for a restricted facet abc with surface centre x: a
 // corner off the surface, the smallest angle below FacetAngle, the surface Delaunay ball's
 // radius above FacetSize, the facet's circumcentre farther than FacetDistance from x.

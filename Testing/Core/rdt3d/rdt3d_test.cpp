@@ -338,8 +338,8 @@ TEST_P(RestrictedDelaunayOnBackend, SurfaceOnlyOfAClosedSurface) {
 
 // A smooth closed surface of the shared data set (a 23k-triangle scan) at the default
 // criteria (sizes from the bounding box). Kept to one for CI time; thingi10k_288351 passes the
-// same checks through `gdr rdt --check`, and so does thingi10k_65778 (a CAD part) with
-// --feature-angle 30 (without, its surface folds at the sharp edges and --check fails).
+// same checks through `gdr rdt --check`, and so does thingi10k_65778 (a CAD part), with
+// --feature-angle 30 and without (SurfaceIsTheBoundaryOfTheVolume).
 TEST_P(RestrictedDelaunayOnBackend, SharedDataSurfaces) {
   const std::filesystem::path dir = std::filesystem::path(GDR_SHARED_DATA_DIR) / "surfaces";
   if (!std::filesystem::is_directory(dir)) GTEST_SKIP() << dir << " is absent (no ../shared here)";
@@ -702,6 +702,50 @@ TEST(RestrictedDelaunay, SliverAngleRange) {
   EXPECT_EQ(r.stats.sliver_angle, 0);
   EXPECT_EQ(r.stats.sliver_moves, 0);
   expect_valid(r, s, true, false);
+}
+
+// Issue 12: a restricted facet (its Voronoi dual meets the surface) between two tetrahedra on
+// the same side of the surface (both circumcentres inside, or both outside) came out as a
+// surface triangle that bounds nothing: `gdr rdt --check` failed with subfaces that are not
+// faces of the tetrahedra and edges used twice in one direction. It happens where a dual only
+// touches the surface or crosses it twice. On thingi10k_65778 without sharp features (a CAD
+// part with dyadic coordinates: circumcentres fall exactly on its planes) it happened in every
+// run (4 such facets on one CPU thread, where the run repeats itself); on fandisk, where duals
+// clip sharp edges, in about one run of 54 (thread timing picks the mesh). The surface is now
+// the boundary of the tetrahedra inside: such facets are left out, with a warning. Stalling is
+// not checked: on this part refinement sometimes stalls in a slow tail (before the fix too).
+TEST_P(RestrictedDelaunayOnBackend, SurfaceIsTheBoundaryOfTheVolume) {
+  const std::filesystem::path file = std::filesystem::path(GDR_SHARED_DATA_DIR) / "surfaces" / "thingi10k_65778.off";
+  if (!std::filesystem::exists(file)) GTEST_SKIP() << file << " is absent (no ../shared here)";
+  const Surface s = io::read_surface(file.string());
+  RestrictedDelaunayOptions o;
+  o.backend = GetParam();
+  o.keep_triangulation = true;
+  std::vector<std::string> warnings;
+  Callbacks cb;
+  cb.warning = [&](const std::string& w) { warnings.push_back(w); };
+  const OneThread one(GetParam() == Backend::Cpu);
+  const RestrictedDelaunayResult r = restricted_delaunay_3d(s, o, cb);
+  const ValidationReport surf = validate_surface(r.mesh.points, r.mesh.subfaces, true);
+  EXPECT_TRUE(surf.valid) << surf.summary();
+  ValidateOptions vo;
+  vo.check_conformity = false;
+  const ValidationReport tets = validate_tetmesh(r.mesh, nullptr, vo);
+  EXPECT_TRUE(tets.valid) << tets.summary();
+  const ValidationReport all = validate_tetmesh(r.triangulation, nullptr, vo);
+  EXPECT_TRUE(all.valid) << all.summary();
+  // The volume the output surface encloses is the tetrahedra's (up to rounding).
+  Surface out;
+  out.points = r.mesh.points;
+  out.triangles = r.mesh.subfaces;
+  EXPECT_NEAR(enclosed_volume(out), r.stats.volume, 1e-9 * r.stats.volume);
+  EXPECT_NEAR(r.stats.volume, enclosed_volume(s), 0.01 * enclosed_volume(s));
+  if (GetParam() == Backend::Cpu) {
+    // The run that failed before: on one thread it has 4 such facets, left out now.
+    bool left_out = false;
+    for (const std::string& w : warnings) left_out = left_out || w.find("left out of the surface") != std::string::npos;
+    EXPECT_TRUE(left_out) << "no restricted facet between tetrahedra on the same side (the case this test is for)";
+  }
 }
 
 TEST(RestrictedDelaunay, RefusesWhatCannotTerminate) {
