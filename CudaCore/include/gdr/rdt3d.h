@@ -3,7 +3,10 @@
 //
 // The output approximates the input surface rather than keeping it: surface vertices lie on
 // it (up to rounding), surface triangles are the restricted facets (Delaunay faces whose
-// Voronoi dual meets the input), tetrahedra are those whose circumcentre lies inside it.
+// Voronoi dual meets the input), tetrahedra are those whose circumcentre lies inside it. With
+// tetrahedra, the surface is their boundary: a restricted facet between two tetrahedra on the
+// same side (its dual touches the input without crossing it, or crosses it twice) bounds
+// nothing and is left out, with a warning.
 //
 // Sharp features (optional: FeatureAngle, or the input's segments) are kept: feature edges
 // are sampled first and protected as constrained segments are in Ruppert's refinement (a
