@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <map>
+#include <unordered_map>
 #include <vector>
 
 #include "mesh3d/tet_topology.h"
@@ -61,25 +61,34 @@ void find_sharp_features(HostTetMesh& m, double sharp_angle_deg) {
   const int ns = m.segments(), np = m.points(), nt = m.tets();
   m.sharp.assign(ns, 0);
   m.prad.assign(np, 0.0f);
-  std::map<std::array<int, 2>, int> by_ends;
-  for (int s = 0; s < ns; ++s)
-    by_ends[{std::min(m.seg[2 * s], m.seg[2 * s + 1]), std::max(m.seg[2 * s], m.seg[2 * s + 1])}] = s;
+  auto key = [](int a, int b) {
+    return (std::uint64_t(std::uint32_t(std::min(a, b))) << 32) | std::uint32_t(std::max(a, b));
+  };
+  std::unordered_map<std::uint64_t, int> by_ends;  // read by all threads below, written only here
+  by_ends.reserve(2 * static_cast<std::size_t>(ns));
+  for (int s = 0; s < ns; ++s) by_ends[key(m.seg[2 * s], m.seg[2 * s + 1])] = s;
   auto segment_of = [&](int a, int b) {
     if (m.ptype[a] == m3d::kSegmentPoint) return m.pseg[a];
     if (m.ptype[b] == m3d::kSegmentPoint) return m.pseg[b];
-    const auto it = by_ends.find({std::min(a, b), std::max(a, b)});
+    const auto it = by_ends.find(key(a, b));
     return it == by_ends.end() ? -1 : it->second;
   };
   const double bound = sharp_angle_deg * 3.14159265358979323846 / 180.0;
 
   // Wedges: from a subface at a subsegment, turn around the subsegment through the
-  // tetrahedra, adding their dihedral angles there, to the next subface.
+  // tetrahedra, adding their dihedral angles there, to the next subface. Threads only ever
+  // set a flag to 1, so the order in which they find a wedge does not matter.
+#pragma omp parallel for schedule(dynamic, 4096) if (nt > 20000)
   for (int t = 0; t < nt; ++t) {
     for (int e = 0; e < 6; ++e) {
       if (!(m.tseg[t] & (1 << e))) continue;
       const int a = m.tv[4 * t + m3d::edge_corner(e, 0)], b = m.tv[4 * t + m3d::edge_corner(e, 1)];
       const int s = segment_of(a, b);
-      if (s < 0 || m.sharp[s]) continue;
+      if (s < 0) continue;
+      std::uint8_t seen;
+#pragma omp atomic read
+      seen = m.sharp[s];
+      if (seen) continue;
       for (int side = 0; side < 2; ++side) {
         // The two faces of t at the edge are those opposite its two other corners.
         int f[2], k = 0;
@@ -98,7 +107,10 @@ void find_sharp_features(HostTetMesh& m, double sharp_angle_deg) {
           for (int c = 0; c < 4; ++c)
             if (c != ca && c != cb && c != (nb & 3)) g = c;
         }
-        if (angle < bound) m.sharp[s] = 1;
+        if (angle < bound) {
+#pragma omp atomic write
+          m.sharp[s] = 1;
+        }
       }
     }
   }
