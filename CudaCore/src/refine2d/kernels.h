@@ -249,6 +249,35 @@ GDR_HD_INLINE void segment_split_point(const MeshView& m, int t, int k, const Cr
   out[1] = on_grid(out[1], c.grid_exp);
 }
 
+// Shells (segment_split_point) cut segments that meet at an input vertex v at matching
+// distances from v; a vertex p on one of them sees the subsegment vw of the other, w at the
+// same distance from v as p, from just outside its diametral circle, when the angle is
+// small: by less than the rounding of p when the angle is 1e-8 rad. Then rounding alone made
+// p encroach vw, vw was split at half the distance, which encroached the other subsegment
+// at v, and so on down to 1e-71 from v (fuzz2d fan, --mode ruppert). Such a p, on a segment
+// at v and at least as far from v as w (less 1e-3, the small-angle rule's tolerance), does
+// not count as encroaching vw: with an angle above 2.6 degrees it never lies inside.
+GDR_HD_INLINE bool on_matching_shell(const MeshView& m, int a, int b, int p) {
+  const int s = segment_of(m, a, b);
+  if (s < 0) return false;
+  for (int end = 0; end < 2; ++end) {
+    const int v = end ? b : a, w = end ? a : b;
+    if (m.ptype[v] != kInputPoint || (m.seg[2 * s] != v && m.seg[2 * s + 1] != v)) continue;
+    bool shares = false;  // p lies on another segment that ends at v
+    if (m.ptype[p] == kSegmentPoint) {
+      const int s2 = m.pseg[p];
+      shares = s2 >= 0 && s2 != s && (m.seg[2 * s2] == v || m.seg[2 * s2 + 1] == v);
+    } else if (m.ptype[p] == kInputPoint) {
+      for (int k = m.vseg_begin[p]; k < m.vseg_begin[p + 1] && !shares; ++k) {
+        const int s2 = m.vseg[k];
+        shares = s2 != s && (m.seg[2 * s2] == v || m.seg[2 * s2 + 1] == v);
+      }
+    }
+    if (shares && dist2(pt(m, v), pt(m, p)) >= (1 - 2e-3) * dist2(pt(m, v), pt(m, w))) return true;
+  }
+  return false;
+}
+
 // ---------------------------------------------------------------------------------------
 // Collect (Algorithm 1 line 3, S4): per triangle a 4-bit mask; bits 0-2 are its edges as
 // encroached subsegments, bit 3 the triangle itself when it is bad. Whether a triangle is bad
@@ -260,7 +289,8 @@ GDR_HD_INLINE int static_collect_mask(const MeshView& m, const Criteria& c, int 
   for (int k = 0; k < 3; ++k) {
     if (!is_subseg(m, t, k)) continue;
     const int a = m.tv[3 * t + next3(k)], b = m.tv[3 * t + prev3(k)], apex = m.tv[3 * t + k];
-    if (encroaches(pt(m, a), pt(m, b), pt(m, apex), c.lens_cos2)) mask |= 1 << k;
+    if (encroaches(pt(m, a), pt(m, b), pt(m, apex), c.lens_cos2) && !on_matching_shell(m, a, b, apex))
+      mask |= 1 << k;
   }
   return mask;
 }

@@ -372,7 +372,10 @@ TEST_P(Refine2d, SplitPointsRoundedOffTheirSubsegmentKeepTheMeshDelaunay) {
     EXPECT_EQ(rep.non_delaunay, 0u) << ends.size();
     EXPECT_EQ(rep.missing_segments, 0u) << ends.size();
     EXPECT_EQ(mislabelled_subsegments(r.mesh, g), 0) << ends.size();
-    EXPECT_GT(r.stats.steiner_points, 100) << ends.size();  // the apex was refined
+    // The apex was refined once; the shells there no longer cascade (kernels.h,
+    // on_matching_shell): 429 and 889 points before, down to 1e-100 from the apex.
+    EXPECT_GT(r.stats.steiner_points, 0) << ends.size();
+    EXPECT_LT(r.stats.steiner_points, 50) << ends.size();
     if (r.stats.stalled) EXPECT_NE(warnings.find("refinement stopped"), std::string::npos);
   }
 }

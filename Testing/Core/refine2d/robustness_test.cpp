@@ -312,3 +312,43 @@ TEST(Refine2dHoles, MisplacedSeedsAreSaid) {
 }
 
 }  // namespace
+
+namespace {
+
+// Segments from one vertex at angles of 1e-8 to 1e-14 rad (scripts/fuzz2d.py fan) with
+// diametral circles: the shells that split them at matching distances from the apex lie
+// just outside each other's diametral circles, by less than rounding; rounding made them
+// encroach each other, and the shells went on down to 1e-71 from the apex (9,407 points in
+// 1,082 iterations and a stall at 20 degrees; 267,139 points in 1,418 iterations at 33).
+// Now a few hundred points, no stall, a valid mesh.
+TEST(Refine2dSmallAngles, FanOfTinyAnglesDoesNotCascade) {
+  struct Case {
+    std::vector<Point2> ends;
+    double angle;
+  };
+  const std::vector<Case> cases = {
+      {{{1.9999999999999998, 3.059677494714037e-08},
+        {1.9999999999999998, 2.637710378872713e-08},
+        {1.9999999999904727, 6.173245868785925e-06}},
+       20},
+      {{{2.0, 3.558401084489544e-11}, {2.0, 7.92454647949038e-13}}, 33}};
+  for (const Case& c : cases) {
+    Pslg g;
+    add_loop(g, {{-1, -1}, {3, -1}, {3, 3}, {-1, 3}});
+    g.points.push_back({0, 0});
+    for (const Point2& e : c.ends) {
+      g.points.push_back(e);
+      g.segments.push_back({4, static_cast<int>(g.points.size()) - 1});
+    }
+    gdr::Refine2dOptions o = cpu(c.angle);
+    o.mode = gdr::EncroachMode::Ruppert;
+    const gdr::Refine2dResult r = gdr::refine_2d(g, o);
+    EXPECT_LT(r.stats.steiner_points, 3000) << c.angle;
+    EXPECT_FALSE(r.stats.stalled) << c.angle;
+    EXPECT_FALSE(r.stats.steiner_cap_reached) << c.angle;
+    const gdr::ValidationReport rep = gdr::validate_trimesh(r.mesh, &g, gdr::ValidateOptions{});
+    EXPECT_TRUE(rep.valid) << c.angle << ": " << rep.summary();
+  }
+}
+
+}  // namespace
