@@ -611,7 +611,13 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
                            "degrees, a thin domain); relax them, or set a cap of your own"
                      : "refinement stopped at the Steiner point cap (" +
                            std::to_string(st.steiner_cap) + ")");
-    if (er.stalled && cb.warning)
+    if (er.small_angle_cascade && cb.warning)
+      cb.warning("refinement stopped: " + std::to_string(er.stuck) + " of the " +
+                 std::to_string(er.live) +
+                 " triangles are bad next to small input angles, and new points only add more "
+                 "(a needle, or segments at tiny angles); the mesh is valid: relax --min-angle, "
+                 "or widen those angles");
+    else if (er.stalled && cb.warning)
       cb.warning("refinement stopped: no point can split the " + std::to_string(er.stuck) +
                  " element(s) left (bad triangles or encroached subsegments)");
   }
