@@ -617,6 +617,11 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
                  " triangles are bad next to small input angles, and new points only add more "
                  "(a needle, or segments at tiny angles); the mesh is valid: relax --min-angle, "
                  "or widen those angles");
+    else if (er.slow_cascade && cb.warning)
+      cb.warning("refinement stopped after " + std::to_string(er.iterations) + " iterations: " +
+                 std::to_string(er.stuck) +
+                 " bad elements remain, and 512 iterations did not halve them (a cascade, as "
+                 "above 30 degrees or at tiny input angles); the mesh is valid: relax --min-angle");
     else if (er.stalled && cb.warning)
       cb.warning("refinement stopped: no point can split the " + std::to_string(er.stuck) +
                  " element(s) left (bad triangles or encroached subsegments)");
