@@ -6,7 +6,7 @@ one-line message; never a signal, exit 1 or 5, a timeout, or a changed input fil
 that breaks this is reported with its seed and input (kept in the work folder) and makes
 the script exit 1.
 
-  scripts/fuzz2d.py build/bin/gdr --runs 25 --max-angle 20   # the short run of CI
+  scripts/fuzz2d.py build/bin/gdr --seed 3 --runs 40 --max-angle 33   # the short run of CI
   scripts/fuzz2d.py build/bin/gdr --seconds 3600 --seed 7 --work /tmp/fuzz   # a long one
 """
 import argparse
@@ -221,7 +221,7 @@ def main():
     ap.add_argument("--timeout", type=float, default=60, help="seconds per run")
     ap.add_argument("--work", default="fuzz2d-work")
     ap.add_argument("--max-angle", type=float, default=33,
-                    help="largest minimum angle tried (above 20 degrees thin inputs can take minutes)")
+                    help="largest minimum angle tried (33: Triangle's practical limit)")
     a = ap.parse_args()
     os.makedirs(a.work, exist_ok=True)
     start = time.time()
