@@ -253,8 +253,14 @@ ThinEstimate estimate_thin_parts(const r2d::HostMesh& m, double tan_theta) {
     const int a = m.seg[2 * s], b = m.seg[2 * s + 1], c = m.seg[2 * u], d = m.seg[2 * u + 1];
     return s == u || a == c || a == d || b == c || b == d;
   };
-  double thinnest_credit = 0;
-  for (int t = 0; t < m.triangles(); ++t)
+  double thinnest_credit = 0, total = 0;
+  const int ntri = m.triangles();
+#pragma omp parallel
+  {
+  ThinEstimate mine;
+  double mine_credit = 0;
+#pragma omp for schedule(dynamic, 256) nowait
+  for (int t = 0; t < ntri; ++t)
     for (int e = 0; e < 3; ++e) {
       const int s = m.ts[3 * t + e];
       if (s < 0) continue;
@@ -309,14 +315,25 @@ ThinEstimate estimate_thin_parts(const r2d::HostMesh& m, double tan_theta) {
         const double w = std::max(gap(u0), gap(u1));
         if (!(w > 0) || !std::isfinite(w)) continue;
         const double credit = (u1 - u0) * len * tan_theta / (4.0 * w);
-        est.triangles += credit;
-        if (credit > thinnest_credit) {
-          thinnest_credit = credit;
-          est.width = w;
-          est.length = (std::min(1.0, std::max(tc, td)) - std::max(0.0, std::min(tc, td))) * len;
+        mine.triangles += credit;
+        if (credit > mine_credit) {
+          mine_credit = credit;
+          mine.width = w;
+          mine.length = (std::min(1.0, std::max(tc, td)) - std::max(0.0, std::min(tc, td))) * len;
         }
       }
     }
+#pragma omp critical
+  {
+    total += mine.triangles;
+    if (mine_credit > thinnest_credit) {
+      thinnest_credit = mine_credit;
+      est.width = mine.width;
+      est.length = mine.length;
+    }
+  }
+  }
+  est.triangles = total;
   return est;
 }
 
@@ -549,11 +566,12 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
     // before any time is spent on them (a 1 x 1e-11 rectangle at 25 degrees ran 15-40 s to
     // the cap of 1M); a cap of the caller's own meshes them up to that cap.
     if (options.min_angle > 0 && st.automatic_steiner_cap) {
+      const auto t_thin = Clock::now();
       const ThinEstimate thin = estimate_thin_parts(mesh, std::tan(options.min_angle * kPi / 180.0));
       const double points = 0.5 * thin.triangles;  // about 2 triangles per point, or fewer
       if (std::getenv("GDR_TRACE"))
-        std::fprintf(stderr, "gdr-trace thin parts: at least %.3g triangles (thinnest %.3g wide)\n",
-                     thin.triangles, thin.width);
+        std::fprintf(stderr, "gdr-trace thin parts: at least %.3g triangles (thinnest %.3g wide), %.3f s\n",
+                     thin.triangles, thin.width, since(t_thin));
       if (points > static_cast<double>(params.max_steiner))
         throw Error(Status::InvalidInput,
                     "the minimum angle of " + rounded(user_options.min_angle) +
