@@ -72,9 +72,10 @@ Quality and size:
   --max-edge L            longest edge allowed (default: no limit)
   --max-area A            largest triangle area allowed (default: no limit)
   --max-steiner N         stop cleanly after inserting N Steiner points (default: 1000
-                          times the input points, at least 1M and 4 times the triangles
-                          the size bounds ask for, within memory); bounds whose mesh
-                          cannot fit in memory are refused before refining
+                          times the input points, at least 1M (100k at --min-angle 0)
+                          and 4 times the triangles the size bounds ask for, within
+                          memory); bounds whose mesh cannot fit in memory, and thin parts
+                          that need more than the cap, are refused before refining
 Algorithm:
   --mode chew|ruppert     a point encroaches a subsegment inside its diametral lens of
                           angle 180 - 2 x min angle (chew, default, as Triangle) or inside

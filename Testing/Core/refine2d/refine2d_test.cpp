@@ -529,7 +529,8 @@ TEST_P(Refine2d, AnAutomaticCapEndsACascade) {
   for (double angle : {0.0, 20.0, 30.0}) {  // at every angle
     o.min_angle = angle;
     const auto r = mesh(g, o);
-    EXPECT_EQ(r.stats.steiner_cap, 1000000) << angle;
+    // At least 1M, or 100k without an angle bound (only encroached subsegments are split).
+    EXPECT_EQ(r.stats.steiner_cap, angle > 0 ? 1000000 : 100000) << angle;
     EXPECT_TRUE(r.stats.automatic_steiner_cap) << angle;
   }
   o.min_angle = 33.8;
