@@ -32,6 +32,11 @@ Backend resolve_backend(Backend requested, std::size_t work_size = 0,
 bool gpu_warm();
 void mark_gpu_warm();
 
+// Starts creating the CUDA context in the background (once per process; nothing without
+// CUDA or with `backend` Cpu, or for Auto when `work_size` is below `auto_min_work`), so that
+// the device is ready when refinement starts instead of after the CPU's input checks and CDT.
+void prewarm_gpu(Backend backend, std::size_t work_size, std::size_t auto_min_work);
+
 int cpu_threads();  // OpenMP threads used by the CPU backend
 
 }  // namespace gdr

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <atomic>
 #include <cctype>
+#include <future>
+#include <mutex>
 
 #include "gdr/error.h"
 
@@ -87,5 +89,21 @@ std::atomic<bool> g_gpu_warm{false};
 }
 bool gpu_warm() { return g_gpu_warm.load(); }
 void mark_gpu_warm() { g_gpu_warm.store(true); }
+
+void prewarm_gpu(Backend backend, std::size_t work_size, std::size_t auto_min_work) {
+#if defined(GDR_HAVE_CUDA)
+  if (backend == Backend::Cpu || (backend == Backend::Auto && work_size < auto_min_work)) return;
+  static std::once_flag once;
+  std::call_once(once, [] {
+    // The device query runs here, so that the CUDA runtime's own state exists before the
+    // future below and is torn down after it: a process that exits at once waits for the
+    // thread (the future's destructor) before CUDA shuts down.
+    if (!device_info().available) return;
+    static std::future<void> done = std::async(std::launch::async, [] { cudaFree(nullptr); });
+  });
+#else
+  (void)backend, (void)work_size, (void)auto_min_work;
+#endif
+}
 
 }  // namespace gdr

@@ -140,6 +140,8 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
                                   const Callbacks& cb) {
   const auto t_start = Clock::now();
   validate_quality_tet_input(unscaled, user_options);
+  // Inputs of 10k triangles and more make enough tetrahedra for Auto to pick a warm GPU.
+  prewarm_gpu(user_options.backend, unscaled.triangles.size(), 10000);
   const m3d::PowerOfTwoScale scale(unscaled);
   const Surface input = scale.scaled(unscaled);
   QualityTetOptions options = user_options;

@@ -227,6 +227,7 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
                                                 const Callbacks& cb) {
   const auto t_start = Clock::now();
   validate_restricted_delaunay_options(user_options);
+  prewarm_gpu(user_options.backend, unscaled.triangles.size(), 10000);  // backend.h
   // Meshed at a power-of-two scale (exact) where the predicates cannot overflow or underflow.
   const m3d::PowerOfTwoScale scale(unscaled);
   const Surface input = scale.scaled(unscaled);
