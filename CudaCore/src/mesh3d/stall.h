@@ -1,8 +1,13 @@
 // Stall detection for the 3D engines (gQM3d, gDP3d): what is left to split can no longer be
 // split by the method when, over kWindow iterations, the elements left to split did not
-// shrink by a fiftieth and the mesh did not grow by a quarter (refinement to a size bound
-// first multiplies the elements to split), or when the same backlog comes back kSame
-// iterations in a row (the same elements failing again). Host code, one per run.
+// shrink by a fiftieth, the mesh did not grow by a quarter (refinement to a size bound
+// first multiplies the elements to split) and the volume of the bad tetrahedra (where the
+// engine reports it) did not shrink by a fiftieth either, or when the same backlog comes back
+// kSame iterations in a row (the same elements failing again). The volume matters while the
+// interior is still empty: each point then replaces large bad tetrahedra by many smaller
+// ones, so the backlog grows while a few dozen points go in per iteration; without it a
+// 1M-tetrahedron run stopped with a quarter of its volume bad (H100, 2026-11-24). Host code,
+// one per run.
 #pragma once
 #include <cstddef>
 #include <vector>
@@ -11,13 +16,16 @@ namespace gdr::m3d {
 
 class StallDetector {
  public:
-  // Records one iteration: elements left to split and points in the mesh. True: stalled.
-  bool stalled(std::size_t backlog, long long points) {
+  // Records one iteration: elements left to split, points in the mesh and the volume of the
+  // bad tetrahedra (0 where not measured). True: stalled.
+  bool stalled(std::size_t backlog, long long points, double bad_volume = 0) {
     backlog_.push_back(backlog);
     points_.push_back(points);
+    volume_.push_back(bad_volume);
     const std::size_t n = backlog_.size();
     const bool shrinking = n <= kWindow || 50 * backlog <= 49 * backlog_[n - 1 - kWindow] ||
-                           4 * points >= 5 * points_[n - 1 - kWindow];
+                           4 * points >= 5 * points_[n - 1 - kWindow] ||
+                           50 * bad_volume < 49 * volume_[n - 1 - kWindow];
     bool unchanged = n > kSame;
     for (std::size_t k = 1; unchanged && k <= kSame; ++k) unchanged = backlog_[n - 1 - k] == backlog;
     return !shrinking || unchanged;
@@ -27,6 +35,7 @@ class StallDetector {
   static constexpr std::size_t kWindow = 40, kSame = 6;
   std::vector<std::size_t> backlog_;
   std::vector<long long> points_;
+  std::vector<double> volume_;
 };
 
 }  // namespace gdr::m3d

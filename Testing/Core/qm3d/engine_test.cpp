@@ -14,6 +14,7 @@
 #include "gdr/validate.h"
 #include "mesh3d/host_mesh.h"
 #include "mesh3d/smooth.h"
+#include "mesh3d/stall.h"
 #include "qm3d/engine_dispatch.h"
 
 namespace {
@@ -265,3 +266,23 @@ TEST(QualityTetMesh, RegionSeedVolumeBoundsApplyPerRegion) {
     EXPECT_TRUE(rep.valid) << rep.summary();
   }
 }
+
+// The stall detector: while the interior is still empty, the backlog of bad elements grows and
+// the points grow slowly (a few dozen per iteration into a mesh of 200k), but the volume of the
+// bad tetrahedra shrinks: that is progress (a 1M-tetrahedron run stopped there with a quarter
+// of its volume bad). The same run without the volume, or with a volume that stays, stalls.
+TEST(StallDetector, ShrinkingBadVolumeIsProgress) {
+  gdr::m3d::StallDetector with_volume, without_volume, stuck_volume;
+  bool a = false, b = false, c = false;
+  for (int i = 0; i < 200; ++i) {
+    const std::size_t backlog = 100000 + 100 * i;  // growing
+    const long long points = 200000 + 30 * i;       // +0.6% over 40 iterations
+    a = a || with_volume.stalled(backlog, points, 1.0 * std::pow(0.99, i));
+    b = b || without_volume.stalled(backlog, points);
+    c = c || stuck_volume.stalled(backlog, points, 1.0);
+  }
+  EXPECT_FALSE(a);
+  EXPECT_TRUE(b);
+  EXPECT_TRUE(c);
+}
+
