@@ -8,13 +8,13 @@
 #include <cstdio>
 #include <cstdlib>
 #include <new>
-#include <sstream>
 #include <string>
 
 #include "cdt3d/cdt3d.h"
 #include "gdr/qm3d.h"
 #include "gdr/validate.h"
 #include "mesh3d/scale.h"
+#include "common/disabled_strategies.h"
 #include "qm3d/engine_dispatch.h"
 #include "qm3d/features.h"
 
@@ -98,24 +98,20 @@ namespace qm3d {
 // Both 3D meshers read it.
 Strategies strategies_from_environment() {
   Strategies s;
-  const char* env = std::getenv("GDR_DISABLE");
-  if (!env) return s;
-  std::stringstream list(env);
-  std::string name;
-  while (std::getline(list, name, ',')) {
-    if (name == "s1") s.compaction = false;
-    else if (name == "s3") s.filtering = false;
-    else if (name == "s5") s.deferment = false;
-    else if (name == "touching") s.touching = false;
-    else if (name == "block_rounds") s.block_rounds = false;
-    else if (name == "grid_rounds") s.grid_rounds = false;
-    else if (name == "worst_first") s.worst_first = false;
-    else if (name == "crowding") s.crowding = false;
-    else if (name == "s4") continue;  // 2D only: the 3D engine always lists all three kinds together
-    else if (!name.empty())
-      throw Error(Status::InvalidInput, "GDR_DISABLE: unknown strategy '" + name +
-                                            "' (known: s1, s3, s5, touching, block_rounds, grid_rounds, worst_first, crowding)");
-  }
+  for_each_disabled_strategy(
+      [&s](const std::string& name) {
+        if (name == "s1") s.compaction = false;
+        else if (name == "s3") s.filtering = false;
+        else if (name == "s5") s.deferment = false;
+        else if (name == "touching") s.touching = false;
+        else if (name == "block_rounds") s.block_rounds = false;
+        else if (name == "grid_rounds") s.grid_rounds = false;
+        else if (name == "worst_first") s.worst_first = false;
+        else if (name == "crowding") s.crowding = false;
+        else return name == "s4";  // 2D only: the 3D engine always lists all three kinds together
+        return true;
+      },
+      "s1, s3, s5, touching, block_rounds, grid_rounds, worst_first, crowding");
   return s;
 }
 

@@ -17,6 +17,7 @@
 #include <omp.h>
 #include <sys/resource.h>
 
+#include "common/disabled_strategies.h"
 #include "exec/space.h"
 #include "gdr/refine2d.h"
 #include "gdr/validate.h"
@@ -58,23 +59,20 @@ r2d::Criteria make_criteria(const Refine2dOptions& o) {
 // (benchmarks only; see Benchmarks/README.md).
 r2d::Strategies strategies_from_environment() {
   r2d::Strategies s;
-  const char* env = std::getenv("GDR_DISABLE");
-  if (!env) return s;
-  std::stringstream list(env);
-  std::string name;
-  while (std::getline(list, name, ',')) {
-    if (name == "s1") s.compaction = false;
-    else if (name == "s3") s.filtering = false;
-    else if (name == "s4") s.irregular = false;
-    else if (name == "s5") s.deferment = false;
-    else if (name == "touching") s.touching = false;
-    else if (name == "block_rounds") s.block_rounds = false;
-    else if (name == "grid_rounds") s.grid_rounds = false;
-    else if (name == "worst_first") s.worst_first = false;
-    else if (!name.empty())
-      throw Error(Status::InvalidInput, "GDR_DISABLE: unknown strategy '" + name +
-                                            "' (known: s1, s3, s4, s5, touching, block_rounds, grid_rounds, worst_first)");
-  }
+  for_each_disabled_strategy(
+      [&s](const std::string& name) {
+        if (name == "s1") s.compaction = false;
+        else if (name == "s3") s.filtering = false;
+        else if (name == "s4") s.irregular = false;
+        else if (name == "s5") s.deferment = false;
+        else if (name == "touching") s.touching = false;
+        else if (name == "block_rounds") s.block_rounds = false;
+        else if (name == "grid_rounds") s.grid_rounds = false;
+        else if (name == "worst_first") s.worst_first = false;
+        else return false;
+        return true;
+      },
+      "s1, s3, s4, s5, touching, block_rounds, grid_rounds, worst_first");
   return s;
 }
 
