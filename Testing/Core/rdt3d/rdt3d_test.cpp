@@ -373,13 +373,23 @@ bool refused_on_gpu(const Surface& s, const RestrictedDelaunayOptions& o) {
   return true;
 }
 
+// The CAD part of ../shared/data (dyadic coordinates, sharp edges), and default options that
+// keep the whole triangulation for the checks.
+std::filesystem::path cad_part() {
+  return std::filesystem::path(GDR_SHARED_DATA_DIR) / "surfaces" / "thingi10k_65778.off";
+}
+RestrictedDelaunayOptions keeping_triangulation(Backend backend) {
+  RestrictedDelaunayOptions o;
+  o.backend = backend;
+  o.keep_triangulation = true;
+  return o;
+}
+
 TEST_P(RestrictedDelaunayOnBackend, CadPartKeepsItsFeatures) {
-  const std::filesystem::path file = std::filesystem::path(GDR_SHARED_DATA_DIR) / "surfaces" / "thingi10k_65778.off";
+  const std::filesystem::path file = cad_part();
   if (!std::filesystem::exists(file)) GTEST_SKIP() << file << " is absent (no ../shared here)";
   const Surface s = io::read_surface(file.string());
-  RestrictedDelaunayOptions o;
-  o.backend = GetParam();
-  o.keep_triangulation = true;
+  RestrictedDelaunayOptions o = keeping_triangulation(GetParam());
   o.feature_angle = 30;
   if (refused_on_gpu(s, o)) return;
   const RestrictedDelaunayResult r = restricted_delaunay_3d(s, o, {});
@@ -715,12 +725,10 @@ TEST(RestrictedDelaunay, SliverAngleRange) {
 // the boundary of the tetrahedra inside: such facets are left out, with a warning. Stalling is
 // not checked: on this part refinement sometimes stalls in a slow tail (before the fix too).
 TEST_P(RestrictedDelaunayOnBackend, SurfaceIsTheBoundaryOfTheVolume) {
-  const std::filesystem::path file = std::filesystem::path(GDR_SHARED_DATA_DIR) / "surfaces" / "thingi10k_65778.off";
+  const std::filesystem::path file = cad_part();
   if (!std::filesystem::exists(file)) GTEST_SKIP() << file << " is absent (no ../shared here)";
   const Surface s = io::read_surface(file.string());
-  RestrictedDelaunayOptions o;
-  o.backend = GetParam();
-  o.keep_triangulation = true;
+  RestrictedDelaunayOptions o = keeping_triangulation(GetParam());
   std::vector<std::string> warnings;
   Callbacks cb;
   cb.warning = [&](const std::string& w) { warnings.push_back(w); };
