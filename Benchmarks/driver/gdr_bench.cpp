@@ -74,13 +74,19 @@ gdr::Refine2dOptions refine_options(const Case& c, double max_edge) {
   o.off_centers = c.number("off_centers", 1) != 0;
   o.remove_exterior = c.text("exterior", "keep") == "remove";
   o.backend = c.runner == "gdr-gpu" ? gdr::Backend::Gpu : gdr::Backend::Cpu;
+  const std::string cdt = c.text("cdt", "auto");  // the initial CDT: auto, cgal or parallel
+  if (cdt != "auto" && cdt != "cgal" && cdt != "parallel")
+    throw gdr::Error(gdr::Status::InvalidInput, "cdt must be auto, cgal or parallel, not " + cdt);
+  o.cdt = cdt == "cgal" ? gdr::CdtMethod::Cgal
+                        : (cdt == "parallel" ? gdr::CdtMethod::Parallel : gdr::CdtMethod::Auto);
   return o;
 }
 
 std::string phases_text(const gdr::Refine2dStats& s) {
   std::ostringstream out;
   out.precision(4);
-  out << "iterations:" << s.iterations;
+  out << "cdt:" << s.cdt_method << ";iterations:" << s.iterations;
+  for (const auto& p : s.cdt_phases) out << ";cdt " << p.name << ':' << p.seconds;
   for (const auto& p : s.phases) out << ';' << p.name << ':' << p.seconds;
   return out.str();
 }

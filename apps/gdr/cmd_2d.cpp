@@ -88,6 +88,9 @@ Algorithm:
                           Triangle and CGAL do, with a warning that counts them);
                           --split-intersections, the old name of the default, is accepted
   --cdt-only              only the constrained Delaunay triangulation, no refinement
+  --cdt auto|cgal|parallel  how the first constrained Delaunay triangulation is built:
+                          CGAL's on the CPU, or the parallel one on the run's backend
+                          (default auto: parallel on the GPU for large inputs, else CGAL)
   --backend auto|gpu|cpu  where to refine (default auto: GPU for large inputs when present)
   --deterministic         the same mesh on every run of the same input and options: the
                           CPU backend on one thread (README "Reproducibility")
@@ -159,6 +162,13 @@ Args2d parse_2d(const std::vector<std::string>& args) {
       {"strict", 0, false, [&](const std::string&) { a.options.strict_input = true; }},
       {"split-intersections", 0, false, [&](const std::string&) { a.options.strict_input = false; }},
       {"cdt-only", 0, false, [&](const std::string&) { a.options.refine = false; }},
+      {"cdt", 0, true,
+       [&](const std::string& v) {
+         if (v == "auto") a.options.cdt = CdtMethod::Auto;
+         else if (v == "cgal") a.options.cdt = CdtMethod::Cgal;
+         else if (v == "parallel") a.options.cdt = CdtMethod::Parallel;
+         else throw UsageError(cmd, "--cdt must be 'auto', 'cgal' or 'parallel', got '" + v + "'");
+       }},
       {"backend", 0, true, [&](const std::string& v) { a.options.backend = parse_backend(cmd, v); }},
       {"check", 0, false, [&](const std::string&) { a.check = true; }},
       {"stats-json", 0, true, [&](const std::string& v) { a.stats_json = v; }},
@@ -237,7 +247,8 @@ void print_summary(const Args2d& a, const Pslg& input, const Refine2dResult& r,
   Table times;
   times.row({"time", "seconds", "share"});
   times.row({"  input checks", fixed(s.input_seconds, 3), ""});
-  times.row({"  initial CDT", fixed(s.cdt_seconds, 3), ""});
+  times.row({"  initial CDT (" + s.cdt_method + ")", fixed(s.cdt_seconds, 3), ""});
+  for (const auto& p : s.cdt_phases) times.row({"    " + p.name, fixed(p.seconds, 3), ""});
   times.row({"  refinement", fixed(s.refine_seconds, 3), ""});
   for (const auto& p : s.phases)
     times.row({"    " + p.name, fixed(p.seconds, 3),
@@ -279,11 +290,13 @@ void write_stats_json(const std::string& path, const Args2d& a, const Refine2dRe
   j.field("region_attributes", o.region_attributes);
   j.field("refine", o.refine);
   j.field("backend", to_string(o.backend));
+  j.field("cdt", o.cdt == CdtMethod::Cgal ? "cgal" : (o.cdt == CdtMethod::Parallel ? "parallel" : "auto"));
   j.end_object();
 
   j.key("stats");
   j.begin_object();
   j.field("backend_used", to_string(s.backend_used));
+  j.field("cdt_method", s.cdt_method);
   j.field("device_name", s.device_name);
   j.field("iterations", s.iterations);
   j.field("input_points", s.input_points);

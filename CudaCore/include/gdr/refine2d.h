@@ -21,6 +21,12 @@ enum class EncroachMode { Ruppert = 0, Chew = 1 };
 // length whose square, or a maximum area whose double, or a minimum angle whose sin^2 leaves
 // the normal range of doubles. Size bounds whose least output cannot fit in memory are
 // refused before refinement (OutOfDeviceMemory), with the estimate in the message.
+// How the initial constrained Delaunay triangulation is built: CGAL's sequential one on the
+// CPU, or the parallel one of the engine (points by rounds of parallel insertion, segments
+// by parallel retriangulation of the triangles they cross) on the run's backend. Auto: the
+// parallel one where the run takes the GPU (the same threshold as prewarming it), else CGAL.
+enum class CdtMethod { Auto = 0, Cgal = 1, Parallel = 2 };
+
 struct Refine2dOptions {
   double min_angle = 20.0;         // degrees, (0, 34]; 0 disables the angle criterion
   double max_edge_length = 0.0;    // 0 = off
@@ -53,6 +59,7 @@ struct Refine2dOptions {
   // (with several, which losing cavities stop early, and the encroachments they flag, depend
   // on thread timing; the GPU's too). Refused with Backend::Gpu.
   bool deterministic = false;
+  CdtMethod cdt = CdtMethod::Auto;
 };
 
 struct PhaseTime {
@@ -79,12 +86,14 @@ struct Refine2dStats {
   bool stalled = false;               // no point could be inserted although bad elements remain
   double min_angle_deg = 0;           // smallest angle in the output
   double input_seconds = 0;           // input checks and cleaning (duplicates, crossings)
-  double cdt_seconds = 0;             // initial CDT (CPU)
+  double cdt_seconds = 0;             // initial CDT
+  std::string cdt_method;             // "cgal", "parallel-gpu" or "parallel-cpu"
   double refine_seconds = 0;          // refinement including transfers
   double output_seconds = 0;          // conversion to the output mesh and its bad-area count
   double total_seconds = 0;
   std::size_t peak_device_bytes = 0;  // GPU backend: peak bytes held by the engine on the device
   std::vector<PhaseTime> phases;      // accumulated refinement time per phase
+  std::vector<PhaseTime> cdt_phases;  // the parallel CDT's time per phase
 };
 
 struct Refine2dResult {

@@ -17,8 +17,7 @@ namespace {
 
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Vb = CGAL::Triangulation_vertex_base_with_info_2<int, K>;
-// Face info: its triangle number, or kOutside / kUnset (no hash maps over 2M faces).
-enum : int { kUnset = -1, kOutside = -2 };
+// Face info: its triangle number (no hash maps over 2M faces).
 using Fb = CGAL::Constrained_triangulation_face_base_2<
     K, CGAL::Triangulation_face_base_with_info_2<int, K>>;
 using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
@@ -118,7 +117,6 @@ void split_segments_at_intersections(CleanPslg& g) {
 }
 
 HostMesh initial_cdt(const CleanPslg& g, bool remove_exterior) {
-  const int n = static_cast<int>(g.points.size());
   Cdt cdt;
   std::vector<Cdt::Vertex_handle> vh;
   insert_points(cdt, g.points, vh);
@@ -129,70 +127,28 @@ HostMesh initial_cdt(const CleanPslg& g, bool remove_exterior) {
     seg_of[key(g.segments[s][0], g.segments[s][1])] = static_cast<int>(s);
   }
 
-  // Domain: everything (convex hull), or only what is enclosed by segments and not in a
-  // hole: flood from the hull and from each hole seed without crossing a constraint.
-  for (auto f : cdt.all_face_handles()) f->info() = kUnset;
-  if (remove_exterior || !g.holes.empty()) {
-    std::vector<Cdt::Face_handle> stack;
-    if (remove_exterior)
-      for (auto f : cdt.all_face_handles())
-        if (cdt.is_infinite(f)) stack.push_back(f);
-    for (const auto& h : g.holes) {
-      Cdt::Face_handle f = cdt.locate(K::Point_2(h.x, h.y));
-      if (f != Cdt::Face_handle() && !cdt.is_infinite(f)) stack.push_back(f);
-    }
-    while (!stack.empty()) {
-      Cdt::Face_handle f = stack.back();
-      stack.pop_back();
-      if (f->info() == kOutside) continue;
-      f->info() = kOutside;
-      for (int i = 0; i < 3; ++i)
-        if (!f->is_constrained(i) && f->neighbor(i)->info() != kOutside)
-          stack.push_back(f->neighbor(i));
-    }
-  }
-  std::vector<Cdt::Face_handle> faces;
+  // Every finite face, numbered; the domain is cut out by assemble_cdt.
+  CdtTriangles c;
+  int nt = 0;
+  for (auto f : cdt.finite_face_handles()) f->info() = nt++;
+  c.tv.resize(3 * std::size_t(nt));
+  c.tn.resize(3 * std::size_t(nt));
+  c.tseg.resize(3 * std::size_t(nt));
   for (auto f : cdt.finite_face_handles()) {
-    if (f->info() == kOutside) continue;
-    f->info() = static_cast<int>(faces.size());
-    faces.push_back(f);
-  }
-  if (faces.empty())
-    throw Error(Status::InvalidInput,
-                "no triangles are left after removing the exterior and the holes (are the "
-                "boundary segments closed, and are the hole points inside them?)");
-
-  HostMesh m;
-  m.xy.resize(2 * std::size_t(n));
-  for (int i = 0; i < n; ++i) {
-    m.xy[2 * i] = g.points[i].x;
-    m.xy[2 * i + 1] = g.points[i].y;
-  }
-  m.ptype.assign(n, kInputPoint);
-  m.pseg.assign(n, -1);
-  for (const auto& s : g.segments) m.seg.insert(m.seg.end(), {s[0], s[1]});
-  m.input_segments = static_cast<int>(g.segments.size());
-  const std::size_t nt = faces.size();
-  m.tv.resize(3 * nt);
-  m.tn.resize(3 * nt);
-  m.ts.resize(3 * nt);
-  for (std::size_t t = 0; t < nt; ++t) {
-    Cdt::Face_handle f = faces[t];
+    const int t = f->info();
     for (int i = 0; i < 3; ++i) {
       // CGAL: vertices counter-clockwise, neighbour(i) opposite vertex(i) -- our convention.
-      m.tv[3 * t + i] = f->vertex(i)->info();
+      c.tv[3 * t + i] = f->vertex(i)->info();
       Cdt::Face_handle nb = f->neighbor(i);
-      const int id = cdt.is_infinite(nb) ? kOutside : nb->info();
-      m.tn[3 * t + i] = id < 0 ? -1 : 3 * id + nb->index(f);
+      c.tn[3 * t + i] = cdt.is_infinite(nb) ? -1 : 3 * nb->info() + nb->index(f);
     }
   }
-  // Segment of each edge; domain-boundary edges that are not segments become hull segments.
-  for (std::size_t t = 0; t < nt; ++t) {
-    Cdt::Face_handle f = faces[t];
+  for (auto f : cdt.finite_face_handles()) {
+    const int t = f->info();
     for (int i = 0; i < 3; ++i) {
-      const int a = m.tv[3 * t + (i + 1) % 3], b = m.tv[3 * t + (i + 2) % 3];
       int s = -1;
       if (f->is_constrained(i)) {
+        const int a = c.tv[3 * t + (i + 1) % 3], b = c.tv[3 * t + (i + 2) % 3];
         auto it = seg_of.find(key(a, b));
         if (it == seg_of.end()) {
           // Numbered as in the input file (an intersection point has no number there).
@@ -206,38 +162,19 @@ HostMesh initial_cdt(const CleanPslg& g, bool remove_exterior) {
                           " (split the segment there, or leave strict input off)");
         }
         s = it->second;
-      } else if (m.tn[3 * t + i] < 0) {
-        s = static_cast<int>(m.seg.size() / 2);
-        m.seg.insert(m.seg.end(), {a, b});
+      } else if (remove_exterior && c.tn[3 * t + i] < 0) {
+        c.exterior_seeds.push_back(t);  // reached from the infinite face
       }
-      m.ts[3 * t + i] = s;
+      c.tseg[3 * t + i] = s;
     }
   }
-  // Regions: from each seed in turn (a later seed wins, as in Triangle), every triangle
-  // reachable without crossing a segment gets its number. Seeds outside the domain mark
-  // nothing.
-  if (!g.regions.empty()) {
-    m.tregion.assign(nt, 0);
-    std::vector<int> stack;
-    std::vector<int> visited(nt, 0);
-    for (std::size_t r = 0; r < g.regions.size(); ++r) {
-      const Point2& p = g.regions[r].point;
-      Cdt::Face_handle f = cdt.locate(K::Point_2(p.x, p.y));
-      if (f == Cdt::Face_handle() || cdt.is_infinite(f) || f->info() < 0) continue;
-      const int number = static_cast<int>(r) + 1;
-      stack.assign(1, f->info());
-      while (!stack.empty()) {
-        const int t = stack.back();
-        stack.pop_back();
-        if (visited[t] == number) continue;
-        visited[t] = number;
-        m.tregion[t] = number;
-        for (int i = 0; i < 3; ++i)
-          if (m.ts[3 * t + i] < 0 && m.tn[3 * t + i] >= 0) stack.push_back(m.tn[3 * t + i] / 3);
-      }
-    }
-  }
-  return m;
+  auto face_at = [&](const Point2& p) {
+    Cdt::Face_handle f = cdt.locate(K::Point_2(p.x, p.y));
+    return f == Cdt::Face_handle() || cdt.is_infinite(f) ? -1 : f->info();
+  };
+  for (const auto& h : g.holes) c.hole_tris.push_back(face_at(h));
+  for (const auto& r : g.regions) c.region_tris.push_back(face_at(r.point));
+  return assemble_cdt(g, std::move(c));
 }
 
 std::vector<double> interpolate_over_cdt(const CleanPslg& g, const std::vector<double>& values,

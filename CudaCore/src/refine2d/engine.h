@@ -62,9 +62,13 @@ EngineResult refine_mesh(const HostMesh& mesh, MeshResult& out, const EnginePara
 namespace detail {
 
 // In-place compaction: live triangles from the tail move into the dead slots of the head,
-// so no second copy of the mesh is ever held (device memory per element).
-template <class Space>
-void compact_triangles(DeviceMesh<Space>& dm) {
+// so no second copy of the mesh is ever held (device memory per element). `renumber` is
+// given the move (MoveTriangles::destination) to renumber other references to triangles.
+struct NoTriangleRefs {
+  void operator()(const MoveTriangles&) const {}
+};
+template <class Space, class Renumber = NoTriangleRefs>
+void compact_triangles(DeviceMesh<Space>& dm, Renumber renumber = {}) {
   using Ops = exec::Ops<Space>;
   const int n = dm.ntri;
   int* rank = dm.aux.data();  // free between iterations
@@ -79,6 +83,7 @@ void compact_triangles(DeviceMesh<Space>& dm) {
   const int base = live < n ? dm.aux.get(live) : live;  // live triangles in the head
   Ops::for_each(n - live, MoveTriangles{dm.view(), hole, live, base});
   Ops::for_each(n - live, FixBackLinks{dm.view(), hole, live, base});
+  renumber(MoveTriangles{dm.view(), hole, live, base});
   dm.ntri = live;
   dm.tv.resize(3 * std::size_t(live));
   dm.tn.resize(3 * std::size_t(live));

@@ -11,4 +11,11 @@ EngineResult refine_mesh_cpu(const HostMesh& mesh, MeshResult& out, const Engine
   return refine_mesh<exec::Cpu>(mesh, out, params, cb);
 }
 
+RawCdt parallel_cdt_cpu(const std::vector<double>& xy, const std::vector<int>& segments, bool hull) {
+  struct Trim {
+    ~Trim() { exec::Ops<exec::Cpu>::trim(); }
+  } trim;
+  return parallel_cdt<exec::Cpu>(xy, segments, hull);
+}
+
 }  // namespace gdr::r2d

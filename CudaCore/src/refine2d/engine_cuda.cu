@@ -11,4 +11,11 @@ EngineResult refine_mesh_cuda(const HostMesh& mesh, MeshResult& out, const Engin
   return refine_mesh<exec::Cuda>(mesh, out, params, cb);
 }
 
+RawCdt parallel_cdt_cuda(const std::vector<double>& xy, const std::vector<int>& segments, bool hull) {
+  struct Trim {
+    ~Trim() { exec::Ops<exec::Cuda>::trim(); }
+  } trim;
+  return parallel_cdt<exec::Cuda>(xy, segments, hull);
+}
+
 }  // namespace gdr::r2d

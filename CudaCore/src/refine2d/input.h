@@ -37,6 +37,26 @@ void split_segments_at_intersections(CleanPslg& pslg);
 // segments become extra segments (as Triangle does), unless the exterior is removed.
 HostMesh initial_cdt(const CleanPslg& pslg, bool remove_exterior);
 
+// Any CDT's triangles, before the exterior and holes are removed: tseg[3t+e] is the segment
+// on edge e (an index into the cleaned segments, or beyond them for convex-hull edges that
+// were made segments) or -1, tn -1 where there is no triangle across.
+struct CdtTriangles {
+  std::vector<int> tv, tn, tseg;
+  std::vector<int> exterior_seeds;  // triangles outside the domain whatever the segments say
+  std::vector<int> hole_tris;       // per hole: the triangle holding it, or -1
+  std::vector<int> region_tris;     // per region seed: the triangle holding it, or -1
+};
+
+// The engine's input from a CDT: what the seeds and holes reach without crossing a segment
+// is removed, domain-boundary edges that are not input segments become hull segments, and
+// regions are numbered by flooding from their seeds.
+HostMesh assemble_cdt(const CleanPslg& g, CdtTriangles triangles);
+
+// The same CDT as initial_cdt, built in parallel (cdt_engine.h) on the GPU or CPU threads;
+// its phases' times go to `phases` when given.
+HostMesh initial_cdt_parallel(const CleanPslg& pslg, bool remove_exterior, bool gpu,
+                              std::vector<PhaseTime>* phases = nullptr);
+
 // Values given at the points of `g` (`count` per point), interpolated linearly over its
 // constrained Delaunay triangulation at `queries` (Triangle interpolates point attributes at
 // Steiner points linearly).

@@ -500,6 +500,25 @@ void warn_misplaced_holes(const r2d::CleanPslg& g, const Callbacks& cb) {
   }
 }
 
+// The initial CDT's builder and where it runs (Refine2dOptions::cdt). The parallel one on
+// the GPU from the size at which a large run prewarms the GPU; CGAL below, where it is fast.
+struct CdtChoice {
+  bool parallel = false, gpu = false;
+};
+constexpr std::size_t kGpuCdtMinInput = 50000;
+CdtChoice choose_cdt(const Refine2dOptions& o, std::size_t input_size) {
+  CdtChoice c;
+  const bool gpu = !o.deterministic && o.backend != Backend::Cpu &&
+                   resolve_backend(o.backend, input_size, kGpuCdtMinInput) == Backend::Gpu;
+  switch (o.cdt) {
+    case CdtMethod::Cgal: break;
+    case CdtMethod::Parallel: c.parallel = true, c.gpu = !o.deterministic && o.backend != Backend::Cpu &&
+                                                          resolve_backend(o.backend) == Backend::Gpu; break;
+    case CdtMethod::Auto: c.parallel = c.gpu = gpu; break;
+  }
+  return c;
+}
+
 }  // namespace
 
 Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_options,
@@ -512,7 +531,7 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
   // Large inputs: the CUDA context is created while the CPU checks the input and builds the
   // CDT (it cost about 0.35 s of a first GPU run).
   if (!user_options.deterministic)
-    prewarm_gpu(user_options.backend, unscaled.points.size() + unscaled.segments.size(), 50000);
+    prewarm_gpu(user_options.backend, unscaled.points.size() + unscaled.segments.size(), kGpuCdtMinInput);
   const PowerOfTwoScale scale(unscaled);
   scale.check_spread(unscaled);
   const Pslg input = scale.scaled(unscaled);
@@ -534,7 +553,12 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
 
   progress(0.02, "constrained Delaunay triangulation");
   auto t0 = Clock::now();
-  r2d::HostMesh mesh = r2d::initial_cdt(pslg, options.remove_exterior);
+  const CdtChoice cdt = choose_cdt(options, pslg.points.size() + pslg.segments.size());
+  r2d::HostMesh mesh = cdt.parallel
+                           ? r2d::initial_cdt_parallel(pslg, options.remove_exterior, cdt.gpu, &st.cdt_phases)
+                           : r2d::initial_cdt(pslg, options.remove_exterior);
+  st.cdt_method = !cdt.parallel ? "cgal" : (cdt.gpu ? "parallel-gpu" : "parallel-cpu");
+  if (cdt.gpu) mark_gpu_warm();
   st.cdt_seconds = since(t0);
   if (aborted()) throw Error(Status::Aborted, "aborted by the caller");
   const int cdt_points = mesh.points();

@@ -1,0 +1,203 @@
+// The parallel CDT's host side (cdt_engine.h does the rest on the device or the CPU
+// threads), and the conversion of any CDT's triangles into the engine's HostMesh, shared
+// with the CGAL path.
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "predicates/predicates.h"
+#include "refine2d/cdt_engine.h"
+#include "refine2d/engine_dispatch.h"
+#include "refine2d/input.h"
+
+namespace gdr::r2d {
+
+std::vector<int> hull_segments(const double* xy, std::vector<int> c) {
+  // Andrew's monotone chain over the candidates, keeping collinear points as vertices: a
+  // hull edge through a point would be a segment through a vertex.
+  auto P = [&](int v) { return xy + 2 * v; };
+  std::sort(c.begin(), c.end(), [&](int a, int b) {
+    return P(a)[0] < P(b)[0] || (P(a)[0] == P(b)[0] && P(a)[1] < P(b)[1]);
+  });
+  std::vector<int> h;
+  for (int pass = 0; pass < 2; ++pass) {
+    const std::size_t floor = h.size();
+    for (std::size_t k = 0; k < c.size(); ++k) {
+      const int v = pass == 0 ? c[k] : c[c.size() - 1 - k];
+      while (h.size() >= floor + 2 && pred::orient2d(P(h[h.size() - 2]), P(h.back()), P(v)) < 0)
+        h.pop_back();
+      h.push_back(v);
+    }
+    h.pop_back();  // the last point starts the other chain
+  }
+  std::vector<int> segs;
+  for (std::size_t i = 0; i < h.size(); ++i) {
+    segs.push_back(h[i]);
+    segs.push_back(h[(i + 1) % h.size()]);
+  }
+  return segs;
+}
+
+namespace {
+
+// The triangle holding p (its boundary counts): a walk with a rotating first edge, then a
+// scan of all triangles if the walk is long (a constrained triangulation can trap walks).
+// -1 if none holds it.
+int locate(const std::vector<int>& tv, const std::vector<int>& tn, const double* xy, const Point2& q) {
+  const double p[2] = {q.x, q.y};
+  const int nt = static_cast<int>(tv.size() / 3);
+  auto inside = [&](int t, int& exit, int step) {
+    exit = -1;
+    for (int i0 = 0; i0 < 3; ++i0) {
+      const int i = (i0 + step) % 3;
+      if (pred::orient2d(xy + 2 * tv[3 * t + (i + 1) % 3], xy + 2 * tv[3 * t + (i + 2) % 3], p) < 0) {
+        exit = i;
+        return false;
+      }
+    }
+    return true;
+  };
+  int t = 0, exit = -1;
+  for (int step = 0; nt > 0 && step < 100000; ++step) {
+    if (inside(t, exit, step)) return t;
+    const int nb = tn[3 * t + exit];
+    if (nb < 0) break;
+    t = nb / 3;
+  }
+  for (t = 0; t < nt; ++t)
+    if (inside(t, exit, 0)) return t;
+  return -1;
+}
+
+}  // namespace
+
+HostMesh assemble_cdt(const CleanPslg& g, CdtTriangles c) {
+  const int n = static_cast<int>(g.points.size());
+  const int nt_all = static_cast<int>(c.tv.size() / 3);
+  const int ninput = static_cast<int>(g.segments.size());
+  // Outside: flood from the seeds without crossing a segment.
+  std::vector<char> outside(nt_all, 0);
+  std::vector<int> stack = c.exterior_seeds;
+  for (int t : c.hole_tris)
+    if (t >= 0) stack.push_back(t);
+  while (!stack.empty()) {
+    const int t = stack.back();
+    stack.pop_back();
+    if (outside[t]) continue;
+    outside[t] = 1;
+    for (int i = 0; i < 3; ++i)
+      if (c.tseg[3 * t + i] < 0 && c.tn[3 * t + i] >= 0 && !outside[c.tn[3 * t + i] / 3])
+        stack.push_back(c.tn[3 * t + i] / 3);
+  }
+  std::vector<int> id(nt_all, -1);
+  int nt = 0;
+  for (int t = 0; t < nt_all; ++t)
+    if (!outside[t]) id[t] = nt++;
+  if (nt == 0)
+    throw Error(Status::InvalidInput,
+                "no triangles are left after removing the exterior and the holes (are the "
+                "boundary segments closed, and are the hole points inside them?)");
+
+  HostMesh m;
+  m.xy.resize(2 * std::size_t(n));
+  for (int i = 0; i < n; ++i) {
+    m.xy[2 * i] = g.points[i].x;
+    m.xy[2 * i + 1] = g.points[i].y;
+  }
+  m.ptype.assign(n, kInputPoint);
+  m.pseg.assign(n, -1);
+  for (const auto& s : g.segments) m.seg.insert(m.seg.end(), {s[0], s[1]});
+  m.input_segments = ninput;
+  m.tv.resize(3 * std::size_t(nt));
+  m.tn.resize(3 * std::size_t(nt));
+  m.ts.assign(3 * std::size_t(nt), -1);
+  for (int t = 0; t < nt_all; ++t) {
+    if (outside[t]) continue;
+    const int u = id[t];
+    for (int i = 0; i < 3; ++i) {
+      m.tv[3 * u + i] = c.tv[3 * t + i];
+      const int nb = c.tn[3 * t + i];
+      m.tn[3 * u + i] = nb < 0 || outside[nb / 3] ? -1 : 3 * id[nb / 3] + nb % 3;
+    }
+  }
+  // Segment of each edge; domain-boundary edges that are not input segments become hull
+  // segments, numbered after the input's.
+  for (int t = 0; t < nt_all; ++t) {
+    if (outside[t]) continue;
+    const int u = id[t];
+    for (int i = 0; i < 3; ++i) {
+      const int s = c.tseg[3 * t + i];
+      if (s >= 0 && s < ninput) {
+        m.ts[3 * u + i] = s;
+      } else if (m.tn[3 * u + i] < 0) {
+        m.ts[3 * u + i] = static_cast<int>(m.seg.size() / 2);
+        m.seg.insert(m.seg.end(), {m.tv[3 * u + (i + 1) % 3], m.tv[3 * u + (i + 2) % 3]});
+      }
+    }
+  }
+  // Regions: from each seed in turn (a later seed wins, as in Triangle), every triangle
+  // reachable without crossing a segment gets its number. Seeds outside the domain mark
+  // nothing.
+  if (!g.regions.empty()) {
+    m.tregion.assign(nt, 0);
+    std::vector<int> visited(nt, 0);
+    for (std::size_t r = 0; r < g.regions.size() && r < c.region_tris.size(); ++r) {
+      const int f = c.region_tris[r];
+      if (f < 0 || outside[f]) continue;
+      const int number = static_cast<int>(r) + 1;
+      stack.assign(1, id[f]);
+      while (!stack.empty()) {
+        const int t = stack.back();
+        stack.pop_back();
+        if (visited[t] == number) continue;
+        visited[t] = number;
+        m.tregion[t] = number;
+        for (int i = 0; i < 3; ++i)
+          if (m.ts[3 * t + i] < 0 && m.tn[3 * t + i] >= 0) stack.push_back(m.tn[3 * t + i] / 3);
+      }
+    }
+  }
+  return m;
+}
+
+HostMesh initial_cdt_parallel(const CleanPslg& g, bool remove_exterior, bool gpu,
+                              std::vector<PhaseTime>* phases) {
+  const int n = static_cast<int>(g.points.size());
+  std::vector<double> xy(2 * std::size_t(n) + 6);
+  for (int i = 0; i < n; ++i) {
+    xy[2 * i] = g.points[i].x;
+    xy[2 * i + 1] = g.points[i].y;
+  }
+  // The bounding triangle: far beyond the scaled input (|x|, |y| < 2), so that few hull
+  // edges are missing from the first triangulation; integers, so the predicates stay exact.
+  const double M = std::ldexp(1.0, 40);
+  const double corners[6] = {-M, -M, M, -M, 0, M};
+  std::copy(corners, corners + 6, xy.begin() + 2 * std::size_t(n));
+  std::vector<int> segments;
+  segments.reserve(2 * g.segments.size());
+  for (const auto& s : g.segments) segments.insert(segments.end(), {s[0], s[1]});
+  RawCdt raw;
+#if defined(GDR_HAVE_CUDA)
+  if (gpu) raw = parallel_cdt_cuda(xy, segments, !remove_exterior);
+  else
+#endif
+  {
+    (void)gpu;
+    raw = parallel_cdt_cpu(xy, segments, !remove_exterior);
+  }
+  if (phases) *phases = raw.phases;
+  CdtTriangles c;
+  c.tv = std::move(raw.tv);
+  c.tn = std::move(raw.tn);
+  c.tseg = std::move(raw.tseg);
+  // Outside from the start: every triangle at the bounding triangle (the hull segments, or
+  // with the exterior removed the input's, stop the flood).
+  const int nt = static_cast<int>(c.tv.size() / 3);
+  for (int t = 0; t < nt; ++t)
+    if (c.tv[3 * t] >= n || c.tv[3 * t + 1] >= n || c.tv[3 * t + 2] >= n) c.exterior_seeds.push_back(t);
+  for (const Point2& h : g.holes) c.hole_tris.push_back(locate(c.tv, c.tn, xy.data(), h));
+  for (const auto& r : g.regions) c.region_tris.push_back(locate(c.tv, c.tn, xy.data(), r.point));
+  return assemble_cdt(g, std::move(c));
+}
+
+}  // namespace gdr::r2d

@@ -1,0 +1,222 @@
+// The parallel constrained Delaunay triangulation (refine2d/cdt_engine.h) against CGAL's,
+// its oracle, on every backend: the same triangles where no four points are cocircular,
+// and where they are (grids, circles), a valid constrained Delaunay triangulation of the
+// same domain by the validators.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <random>
+
+#include "gdr/io.h"
+#include "gdr/refine2d.h"
+#include "gdr/validate.h"
+
+namespace {
+
+using gdr::Backend;
+using gdr::CdtMethod;
+using gdr::Point2;
+using gdr::Pslg;
+constexpr double kPi = 3.14159265358979323846;
+
+void add_loop(Pslg& g, const std::vector<Point2>& pts) {
+  const int base = static_cast<int>(g.points.size());
+  const int n = static_cast<int>(pts.size());
+  for (int i = 0; i < n; ++i) {
+    g.points.push_back(pts[i]);
+    g.segments.push_back({base + i, base + (i + 1) % n});
+  }
+}
+
+std::vector<Point2> box(double x0, double y0, double x1, double y1) {
+  return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+}
+
+// Triangles as sorted triples of point coordinates' indices, each rotated to start at its
+// smallest vertex (orientation kept).
+std::vector<std::array<int, 3>> canonical(const gdr::TriMesh& m) {
+  std::vector<std::array<int, 3>> t;
+  for (const auto& tri : m.triangles) {
+    std::array<int, 3> a = {tri[0], tri[1], tri[2]};
+    std::rotate(a.begin(), std::min_element(a.begin(), a.end()), a.end());
+    t.push_back(a);
+  }
+  std::sort(t.begin(), t.end());
+  return t;
+}
+
+class ParallelCdt : public ::testing::TestWithParam<Backend> {
+ protected:
+  void SetUp() override {
+    if (GetParam() == Backend::Gpu && !gdr::gpu_available())
+      GTEST_SKIP() << "no usable CUDA device: " << gdr::device_info().reason;
+  }
+
+  gdr::TriMesh cdt(const Pslg& g, CdtMethod method, bool remove_exterior) {
+    gdr::Refine2dOptions o;
+    o.refine = false;
+    o.cdt = method;
+    o.remove_exterior = remove_exterior;
+    o.backend = method == CdtMethod::Cgal ? Backend::Cpu : GetParam();
+    gdr::Refine2dResult r = gdr::refine_2d(g, o);
+    const gdr::ValidationReport rep = gdr::validate_trimesh(r.mesh, &g, {});
+    EXPECT_TRUE(rep.valid) << rep.summary();
+    EXPECT_EQ(rep.non_delaunay, 0u);
+    EXPECT_EQ(rep.missing_segments, 0u);
+    EXPECT_EQ(rep.missing_points, 0u);
+    if (method == CdtMethod::Parallel)
+      EXPECT_EQ(r.stats.cdt_method, GetParam() == Backend::Gpu ? "parallel-gpu" : "parallel-cpu");
+    return r.mesh;
+  }
+
+  // Both CDTs of g: the same triangles (general position) or as many (cocircular points).
+  void compare(const Pslg& g, bool remove_exterior, bool general_position) {
+    const gdr::TriMesh a = cdt(g, CdtMethod::Cgal, remove_exterior);
+    const gdr::TriMesh b = cdt(g, CdtMethod::Parallel, remove_exterior);
+    ASSERT_EQ(a.points.size(), b.points.size());
+    ASSERT_EQ(a.triangles.size(), b.triangles.size());
+    EXPECT_EQ(a.subsegments.size(), b.subsegments.size());
+    if (general_position) EXPECT_TRUE(canonical(a) == canonical(b)) << "the triangulations differ";
+  }
+};
+
+TEST_P(ParallelCdt, RandomPoints) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1, 1);
+  Pslg g;
+  for (int i = 0; i < 20000; ++i) g.points.push_back({u(rng), u(rng)});
+  compare(g, false, true);
+}
+
+// Points in a tight cluster and a few far away: many rounds insert into a few triangles.
+TEST_P(ParallelCdt, ClusteredPoints) {
+  std::mt19937 rng(5);
+  std::normal_distribution<double> u(0, 1e-6);
+  Pslg g;
+  for (int i = 0; i < 5000; ++i) g.points.push_back({0.3 + u(rng), 0.2 + u(rng)});
+  add_loop(g, box(-1, -1, 1, 1));
+  compare(g, false, true);
+  compare(g, true, true);
+}
+
+TEST_P(ParallelCdt, RandomSegmentsInCells) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0.05, 0.95);
+  Pslg g;
+  const int n = 60;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const int a = static_cast<int>(g.points.size());
+      g.points.push_back({i + u(rng), j + u(rng)});
+      g.points.push_back({i + u(rng), j + u(rng)});
+      g.segments.push_back({a, a + 1});
+    }
+  compare(g, false, true);
+  add_loop(g, box(-0.5, -0.5, n + 0.5, n + 0.5));
+  compare(g, true, true);
+}
+
+// Long segments across a dense cloud: each crosses hundreds of triangles, so the
+// pseudo-polygons on its sides are long (and claims of neighbouring segments collide).
+TEST_P(ParallelCdt, LongSegmentsThroughACloud) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0, 1);
+  Pslg g;
+  for (int i = 0; i < 20000; ++i) g.points.push_back({u(rng), u(rng)});
+  for (int k = 0; k < 40; ++k) {  // chords between the left and right sides, not crossing
+    const int a = static_cast<int>(g.points.size());
+    const double y = (k + 0.5) / 40;
+    g.points.push_back({-0.01, y});
+    g.points.push_back({1.01, y + 0.01 * std::sin(k)});
+    g.segments.push_back({a, a + 1});
+  }
+  compare(g, false, true);
+}
+
+TEST_P(ParallelCdt, CocircularGridAndCircle) {
+  Pslg g;
+  const int n = 60;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) g.points.push_back({double(i), double(j)});
+  add_loop(g, box(-1, -1, n, n));
+  g.segments.push_back({0, n * n - 1});  // the grid's diagonal: through grid points, split
+  compare(g, false, false);
+  Pslg c;
+  for (int i = 0; i < 4096; ++i) {
+    // Exactly cocircular where cos and sin are exact (multiples of 90 degrees) and within
+    // rounding elsewhere: ties and near-ties.
+    const double t = 2 * kPi * i / 4096;
+    c.points.push_back({std::cos(t), std::sin(t)});
+  }
+  compare(c, false, false);
+}
+
+TEST_P(ParallelCdt, CollinearPointsOnTheHullAndOnSegments) {
+  Pslg g;
+  for (int i = 0; i <= 40; ++i) g.points.push_back({i * 0.25, 0.0});  // a hull edge's points
+  for (int i = 0; i < 20; ++i) g.segments.push_back({i, i + 1});      // half of them joined
+  g.points.push_back({5, 3});
+  for (int i = 1; i < 30; ++i) g.points.push_back({5 + i * 0.1, 3 - i * 0.1});  // collinear run
+  compare(g, false, false);
+}
+
+TEST_P(ParallelCdt, HolesAndRegions) {
+  Pslg g;
+  add_loop(g, box(0, 0, 4, 2));
+  add_loop(g, box(0.5, 0.5, 1.5, 1.5));
+  add_loop(g, box(2.5, 0.5, 3.5, 1.5));
+  g.holes.push_back({1, 1});
+  gdr::RegionSeed2 r;
+  r.point = {3, 1};
+  r.attribute = 7;
+  g.regions.push_back(r);
+  compare(g, true, false);
+  const gdr::TriMesh m = cdt(g, CdtMethod::Parallel, true);
+  ASSERT_EQ(m.triangle_region.size(), m.triangles.size());
+  int in_region = 0;
+  for (double a : m.triangle_region) in_region += a == 7;
+  EXPECT_GT(in_region, 0);
+}
+
+TEST_P(ParallelCdt, SharedDataPslgs) {
+  const std::filesystem::path dir = std::filesystem::path(GDR_SHARED_DATA_DIR) / "pslg";
+  if (!std::filesystem::exists(dir)) GTEST_SKIP() << "no shared data at " << dir;
+  int n = 0;
+  for (const auto& f : std::filesystem::directory_iterator(dir)) {
+    if (f.path().extension() != ".poly") continue;
+    SCOPED_TRACE(f.path().string());
+    const Pslg g = gdr::io::read_poly(f.path().string());
+    compare(g, false, false);
+    compare(g, true, false);
+    ++n;
+  }
+  EXPECT_GE(n, 3);
+}
+
+// Refinement from the parallel CDT: a valid quality mesh, as from CGAL's.
+TEST_P(ParallelCdt, RefinementFromIt) {
+  Pslg g;
+  add_loop(g, box(0, 0, 3, 1));
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> u(0.1, 0.9);
+  for (int i = 0; i < 200; ++i) g.points.push_back({3 * u(rng), u(rng)});
+  gdr::Refine2dOptions o;
+  o.cdt = CdtMethod::Parallel;
+  o.backend = GetParam();
+  o.min_angle = 30;
+  const gdr::Refine2dResult r = gdr::refine_2d(g, o);
+  gdr::ValidateOptions vo;
+  vo.min_angle_deg = 30;
+  const gdr::ValidationReport rep = gdr::validate_trimesh(r.mesh, &g, vo);
+  EXPECT_TRUE(rep.valid) << rep.summary();
+  EXPECT_EQ(r.stats.bad_triangles, 0);
+  EXPECT_GT(r.stats.steiner_points, 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, ParallelCdt, ::testing::Values(Backend::Cpu, Backend::Gpu),
+                         [](const auto& info) { return info.param == Backend::Gpu ? "Gpu" : "Cpu"; });
+
+}  // namespace
