@@ -85,7 +85,11 @@ gdr::Refine2dOptions refine_options(const Case& c, double max_edge) {
 std::string phases_text(const gdr::Refine2dStats& s) {
   std::ostringstream out;
   out.precision(4);
-  out << "cdt:" << s.cdt_method << ";iterations:" << s.iterations;
+  // Where the end-to-end time goes: input checks, CDT, refinement, output, and the rest
+  // (scaling, size and thin-part estimates) as setup.
+  const double setup = s.total_seconds - s.input_seconds - s.cdt_seconds - s.refine_seconds - s.output_seconds;
+  out << "input:" << s.input_seconds << ";setup:" << setup << ";output:" << s.output_seconds
+      << ";cdt:" << s.cdt_method << ";iterations:" << s.iterations;
   for (const auto& p : s.cdt_phases) out << ";cdt " << p.name << ':' << p.seconds;
   for (const auto& p : s.phases) out << ';' << p.name << ':' << p.seconds;
   return out.str();

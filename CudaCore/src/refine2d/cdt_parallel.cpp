@@ -89,6 +89,7 @@ HostMesh assemble_cdt(const CleanPslg& g, CdtTriangles c) {
       if (c.tseg[3 * t + i] < 0 && c.tn[3 * t + i] >= 0 && !outside[c.tn[3 * t + i] / 3])
         stack.push_back(c.tn[3 * t + i] / 3);
   }
+  // Kept triangles numbered in order (a scan), then copied and relinked in parallel.
   std::vector<int> id(nt_all, -1);
   int nt = 0;
   for (int t = 0; t < nt_all; ++t)
@@ -100,41 +101,48 @@ HostMesh assemble_cdt(const CleanPslg& g, CdtTriangles c) {
 
   HostMesh m;
   m.xy.resize(2 * std::size_t(n));
-  for (int i = 0; i < n; ++i) {
-    m.xy[2 * i] = g.points[i].x;
-    m.xy[2 * i + 1] = g.points[i].y;
-  }
   m.ptype.assign(n, kInputPoint);
   m.pseg.assign(n, -1);
-  for (const auto& s : g.segments) m.seg.insert(m.seg.end(), {s[0], s[1]});
-  m.input_segments = ninput;
+  m.seg.resize(2 * std::size_t(ninput));
   m.tv.resize(3 * std::size_t(nt));
   m.tn.resize(3 * std::size_t(nt));
-  m.ts.assign(3 * std::size_t(nt), -1);
-  for (int t = 0; t < nt_all; ++t) {
-    if (outside[t]) continue;
-    const int u = id[t];
-    for (int i = 0; i < 3; ++i) {
-      m.tv[3 * u + i] = c.tv[3 * t + i];
-      const int nb = c.tn[3 * t + i];
-      m.tn[3 * u + i] = nb < 0 || outside[nb / 3] ? -1 : 3 * id[nb / 3] + nb % 3;
+  m.ts.resize(3 * std::size_t(nt));
+  m.input_segments = ninput;
+#pragma omp parallel
+  {
+#pragma omp for nowait
+    for (int i = 0; i < n; ++i) {
+      m.xy[2 * i] = g.points[i].x;
+      m.xy[2 * i + 1] = g.points[i].y;
     }
-  }
-  // Segment of each edge; domain-boundary edges that are not input segments become hull
-  // segments, numbered after the input's.
-  for (int t = 0; t < nt_all; ++t) {
-    if (outside[t]) continue;
-    const int u = id[t];
-    for (int i = 0; i < 3; ++i) {
-      const int s = c.tseg[3 * t + i];
-      if (s >= 0 && s < ninput) {
-        m.ts[3 * u + i] = s;
-      } else if (m.tn[3 * u + i] < 0) {
-        m.ts[3 * u + i] = static_cast<int>(m.seg.size() / 2);
-        m.seg.insert(m.seg.end(), {m.tv[3 * u + (i + 1) % 3], m.tv[3 * u + (i + 2) % 3]});
+#pragma omp for nowait
+    for (int k = 0; k < ninput; ++k) {
+      m.seg[2 * k] = g.segments[k][0];
+      m.seg[2 * k + 1] = g.segments[k][1];
+    }
+    // Segment of each edge: an input segment's number, -2 for a domain-boundary edge that is
+    // none (numbered below), else -1.
+#pragma omp for
+    for (int t = 0; t < nt_all; ++t) {
+      if (outside[t]) continue;
+      const int u = id[t];
+      for (int i = 0; i < 3; ++i) {
+        m.tv[3 * u + i] = c.tv[3 * t + i];
+        const int nb = c.tn[3 * t + i];
+        m.tn[3 * u + i] = nb < 0 || outside[nb / 3] ? -1 : 3 * id[nb / 3] + nb % 3;
+        const int s = c.tseg[3 * t + i];
+        m.ts[3 * u + i] = s >= 0 && s < ninput ? s : (m.tn[3 * u + i] < 0 ? -2 : -1);
       }
     }
   }
+  // Domain-boundary edges that are not input segments become hull segments, numbered after
+  // the input's.
+  for (int u = 0; u < nt; ++u)
+    for (int i = 0; i < 3; ++i)
+      if (m.ts[3 * u + i] == -2) {
+        m.ts[3 * u + i] = static_cast<int>(m.seg.size() / 2);
+        m.seg.insert(m.seg.end(), {m.tv[3 * u + (i + 1) % 3], m.tv[3 * u + (i + 2) % 3]});
+      }
   // Regions: from each seed in turn (a later seed wins, as in Triangle), every triangle
   // reachable without crossing a segment gets its number. Seeds outside the domain mark
   // nothing.
