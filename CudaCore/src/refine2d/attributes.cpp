@@ -26,7 +26,9 @@ void carry_input_data(const Pslg& in, const CleanPslg& g, const double* xy, cons
 
   // Markers, as Triangle assigns them.
   out.subsegment_markers.resize(out.subsegments.size());
-  for (std::size_t k = 0; k < out.subsegments.size(); ++k) {
+  const long long nsubsegments = static_cast<long long>(out.subsegments.size());
+#pragma omp parallel for
+  for (long long k = 0; k < nsubsegments; ++k) {
     const int s = out.subsegment_source[k];
     const int marker = s >= 0 && segment_marked ? in.segment_markers[s] : 0;
     out.subsegment_markers[k] = marker == 0 && subseg[4 * k + 3] ? 1 : marker;
@@ -36,17 +38,29 @@ void carry_input_data(const Pslg& in, const CleanPslg& g, const double* xy, cons
     for (std::size_t v = 0; v < nclean; ++v)
       if (g.point_origin[v] >= 0) out.point_markers[v] = in.point_markers[g.point_origin[v]];
   // An unmarked point takes the marker of the first marked segment through it in input
-  // order (hull edges last), as Triangle inserts its segments.
-  std::vector<int> order(out.subsegments.size());
-  for (std::size_t k = 0; k < order.size(); ++k) order[k] = static_cast<int>(k);
-  const auto rank = [&](int k) {
+  // order (hull edges last), as Triangle inserts its segments: the least (segment, subsegment)
+  // key among the marked subsegments at each point.
+  std::vector<unsigned long long> first(np, ~0ull);
+  const long long nsub = static_cast<long long>(out.subsegments.size());
+#pragma omp parallel for
+  for (long long k = 0; k < nsub; ++k) {
+    if (out.subsegment_markers[k] == 0) continue;
     const int s = out.subsegment_source[k];
-    return s < 0 ? std::numeric_limits<int>::max() : s;
-  };
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return rank(a) < rank(b); });
-  for (const int k : order)
-    for (const int v : out.subsegments[k])
-      if (out.point_markers[v] == 0) out.point_markers[v] = out.subsegment_markers[k];
+    const unsigned long long key =
+        (static_cast<unsigned long long>(s < 0 ? 0xffffffffu : static_cast<unsigned>(s)) << 32) |
+        static_cast<unsigned>(k);
+    for (const int v : out.subsegments[k]) {
+      unsigned long long old = __atomic_load_n(&first[v], __ATOMIC_RELAXED);
+      while (key < old && !__atomic_compare_exchange_n(&first[v], &old, key, true, __ATOMIC_RELAXED,
+                                                       __ATOMIC_RELAXED)) {
+      }
+    }
+  }
+  const long long npl = static_cast<long long>(np);
+#pragma omp parallel for
+  for (long long v = 0; v < npl; ++v)
+    if (out.point_markers[v] == 0 && first[v] != ~0ull)
+      out.point_markers[v] = out.subsegment_markers[first[v] & 0xffffffffu];
 
   // Point attributes: the input's own; along its segment for a point where segments were
   // split; over the input's constrained Delaunay triangulation for a Steiner point.

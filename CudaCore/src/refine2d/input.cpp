@@ -60,40 +60,51 @@ bool conflict(const std::vector<Point2>& P, const std::array<int, 2>& s,
   return false;
 }
 
-// Indices 0..n-1 in parallel-sorted order of `less` (ties by index: stable).
-template <class Less>
-std::vector<int> sorted_indices(std::size_t n, const Less& less) {
+// Indices 0..n-1 in order of key(i), ties by index: the (key, index) pairs are sorted in
+// parallel as contiguous values, not indices compared through the keys (cache misses).
+template <class Key>
+std::vector<int> sorted_indices(std::size_t n, const Key& key) {
+  using K = decltype(key(0));
+  std::vector<std::pair<K, int>> kv(n);
+  const long long nl = static_cast<long long>(n);
+#pragma omp parallel for
+  for (long long i = 0; i < nl; ++i) kv[i] = {key(static_cast<int>(i)), static_cast<int>(i)};
+  __gnu_parallel::sort(kv.begin(), kv.end());
   std::vector<int> order(n);
-  for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<int>(i);
-  __gnu_parallel::sort(order.begin(), order.end(),
-                       [&](int i, int j) { return less(i, j) || (!less(j, i) && i < j); });
+#pragma omp parallel for
+  for (long long i = 0; i < nl; ++i) order[i] = kv[i].second;
   return order;
 }
 
 void dedupe_segments(CleanPslg& g, const Callbacks& cb) {
   const std::size_t n = g.segments.size();
+  const long long nl = static_cast<long long>(n);
   std::vector<long long> key(n);
-  for (std::size_t s = 0; s < n; ++s) {
+#pragma omp parallel for
+  for (long long s = 0; s < nl; ++s) {
     const int a = std::min(g.segments[s][0], g.segments[s][1]);
     const int b = std::max(g.segments[s][0], g.segments[s][1]);
     key[s] = (static_cast<long long>(a) << 32) | b;
   }
-  const std::vector<int> order = sorted_indices(n, [&](int i, int j) { return key[i] < key[j]; });
+  const std::vector<int> order = sorted_indices(n, [&](int i) { return key[i]; });
   std::vector<char> repeat(n, 0);  // the same segment as an earlier one
-  for (std::size_t k = 1; k < n; ++k) repeat[order[k]] = key[order[k]] == key[order[k - 1]];
+  long long dropped = 0;
+#pragma omp parallel for reduction(+ : dropped)
+  for (long long k = 1; k < nl; ++k) {
+    repeat[order[k]] = key[order[k]] == key[order[k - 1]];
+    dropped += repeat[order[k]];
+  }
+  if (!dropped) return;
   std::vector<std::array<int, 2>> segs;
   std::vector<int> origin;
-  long long dropped = 0;
+  segs.reserve(n - dropped);
+  origin.reserve(n - dropped);
   for (std::size_t s = 0; s < n; ++s) {
-    if (repeat[s]) {
-      ++dropped;
-      continue;
-    }
+    if (repeat[s]) continue;
     segs.push_back(g.segments[s]);
     origin.push_back(g.segment_origin[s]);
   }
-  if (dropped && cb.warning)
-    cb.warning(std::to_string(dropped) + " duplicate segment(s) ignored");
+  if (cb.warning) cb.warning(std::to_string(dropped) + " duplicate segment(s) ignored");
   g.segments.swap(segs);
   g.segment_origin.swap(origin);
 }
@@ -451,15 +462,16 @@ CleanPslg clean_input(const Pslg& in, const Refine2dOptions& o, const Callbacks&
   // first in input order; the kept points stay in input order.
   const std::size_t np = in.points.size();
   const auto& P = in.points;
-  const std::vector<int> order = sorted_indices(np, [&](int i, int j) {
-    return P[i].x < P[j].x || (P[i].x == P[j].x && P[i].y < P[j].y);
-  });
+  // (-0 and 0 compare equal as doubles, and NaN was refused.)
+  const std::vector<int> order = sorted_indices(np, [&](int i) { return std::make_pair(P[i].x, P[i].y); });
   std::vector<int> first(np);  // first input index with the same coordinates
   for (std::size_t k = 0; k < np; ++k) {
     const int i = order[k], h = k ? order[k - 1] : -1;
     first[i] = h >= 0 && P[h].x == P[i].x && P[h].y == P[i].y ? first[h] : i;
   }
   std::vector<int> remap(np);
+  g.points.reserve(np);
+  g.point_origin.reserve(np);
   for (std::size_t i = 0; i < np; ++i) {
     if (first[i] == static_cast<int>(i)) {
       remap[i] = static_cast<int>(g.points.size());
@@ -472,9 +484,13 @@ CleanPslg clean_input(const Pslg& in, const Refine2dOptions& o, const Callbacks&
   }
   if (g.duplicates_merged && cb.warning)
     cb.warning(std::to_string(g.duplicates_merged) + " duplicate point(s) merged");
-  for (std::size_t s = 0; s < in.segments.size(); ++s) {
-    g.segments.push_back({remap[in.segments[s][0]], remap[in.segments[s][1]]});
-    g.segment_origin.push_back(static_cast<int>(s));
+  g.segments.resize(in.segments.size());
+  g.segment_origin.resize(in.segments.size());
+  const long long nseg = static_cast<long long>(in.segments.size());
+#pragma omp parallel for
+  for (long long s = 0; s < nseg; ++s) {
+    g.segments[s] = {remap[in.segments[s][0]], remap[in.segments[s][1]]};
+    g.segment_origin[s] = static_cast<int>(s);
   }
   dedupe_segments(g, cb);
 

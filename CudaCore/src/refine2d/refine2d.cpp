@@ -434,13 +434,39 @@ void note_removed_segments(const Pslg& input, const r2d::CleanPslg& pslg, TriMes
   std::vector<int> cleaned(input.points.size(), -1);
   for (std::size_t v = 0; v < pslg.point_origin.size(); ++v)
     if (pslg.point_origin[v] >= 0) cleaned[pslg.point_origin[v]] = static_cast<int>(v);
-  std::vector<std::vector<std::array<int, 2>>> chains(inputs);
-  for (std::size_t k = 0; k < out.subsegments.size(); ++k)
-    if (out.subsegment_source[k] >= 0) chains[out.subsegment_source[k]].push_back(out.subsegments[k]);
+  // Each segment's subsegments, grouped by a counting sort (no vector per segment: a
+  // million small allocations took most of the output time).
+  std::vector<int> begin(inputs + 1, 0), order(out.subsegments.size());
+  for (const int s : out.subsegment_source)
+    if (s >= 0) ++begin[s + 1];
+  for (std::size_t s = 0; s < inputs; ++s) begin[s + 1] += begin[s];
+  {
+    std::vector<int> fill(begin.begin(), begin.end() - 1);
+    for (std::size_t k = 0; k < out.subsegments.size(); ++k)
+      if (out.subsegment_source[k] >= 0) order[fill[out.subsegment_source[k]]++] = static_cast<int>(k);
+  }
   std::vector<char> kept(inputs, 0);
-  for (std::size_t s = 0; s < inputs; ++s) {
-    const int a = cleaned[input.segments[s][0]], b = cleaned[input.segments[s][1]];
-    kept[s] = a < 0 || b < 0 ? !chains[s].empty() : !validate::chain_path(chains[s], a, b).empty();
+  const long long ninputs = static_cast<long long>(inputs);
+#pragma omp parallel
+  {
+    std::vector<std::array<int, 2>> chain;
+#pragma omp for schedule(dynamic, 4096)
+    for (long long s = 0; s < ninputs; ++s) {
+      const int a = cleaned[input.segments[s][0]], b = cleaned[input.segments[s][1]];
+      const int n = begin[s + 1] - begin[s];
+      if (a < 0 || b < 0 || n == 0) {
+        kept[s] = n > 0;
+        continue;
+      }
+      const auto& e = out.subsegments[order[begin[s]]];
+      if (n == 1) {  // not split: the common case needs no path search
+        kept[s] = (e[0] == a && e[1] == b) || (e[0] == b && e[1] == a);
+        continue;
+      }
+      chain.clear();
+      for (int k = begin[s]; k < begin[s + 1]; ++k) chain.push_back(out.subsegments[order[k]]);
+      kept[s] = !validate::chain_path(chain, a, b).empty();
+    }
   }
   std::string list;
   out.removed_segments.clear();
@@ -697,6 +723,7 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
   const std::size_t nsub = mesh_out.subseg.size() / 4;
   out.subsegments.resize(nsub);
   out.subsegment_source.resize(nsub);
+#pragma omp parallel for
   for (std::size_t k = 0; k < nsub; ++k) {
     const int s = mesh_out.subseg[4 * k + 2];
     out.subsegments[k] = {mesh_out.subseg[4 * k], mesh_out.subseg[4 * k + 1]};
