@@ -91,18 +91,22 @@ SizeEstimate estimate_size(const r2d::HostMesh& m, const Refine2dOptions& o,
                            const std::vector<double>& region_area2) {
   SizeEstimate e;
   double area_bounded = 0;  // the triangles the area bounds ask for, region by region
-  for (int t = 0; t < m.triangles(); ++t) {
+  double area = 0;
+  const int nt = m.triangles();
+#pragma omp parallel for reduction(+ : area, area_bounded)
+  for (int t = 0; t < nt; ++t) {
     const double* a = &m.xy[2 * m.tv[3 * t]];
     const double* b = &m.xy[2 * m.tv[3 * t + 1]];
     const double* c = &m.xy[2 * m.tv[3 * t + 2]];
-    const double area = 0.5 * std::fabs((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]));
-    e.area += area;
+    const double at = 0.5 * std::fabs((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]));
+    area += at;
     double bound = o.max_area;
     const int r = m.tregion.empty() ? 0 : m.tregion[t];
     if (r > 0 && r <= static_cast<int>(region_area2.size()) && region_area2[r - 1] > 0)
       bound = bound > 0 ? std::min(bound, 0.5 * region_area2[r - 1]) : 0.5 * region_area2[r - 1];
-    if (bound > 0) area_bounded += area / bound;
+    if (bound > 0) area_bounded += at / bound;
   }
+  e.area = area;
   double bounds = area_bounded;
   if (o.max_edge_length > 0)
     bounds = std::max(bounds, e.area / (0.433 * o.max_edge_length * o.max_edge_length));
