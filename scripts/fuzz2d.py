@@ -167,7 +167,7 @@ def digest(path):
         return hashlib.sha256(f.read()).hexdigest()
 
 
-def one_run(gdr, work, seed, timeout, max_angle=33):
+def one_run(gdr, work, seed, timeout, max_angle=33, extra=()):
     r = random.Random(seed)
     if r.random() < 0.6:
         gen = r.choice(GENERATORS)
@@ -184,7 +184,7 @@ def one_run(gdr, work, seed, timeout, max_angle=33):
     with open(inp, "wb") as f:
         f.write(data)
     before = digest(inp)
-    cmd = [gdr, "2d", inp, "-o", out, "--check", "--backend", "cpu"] + options(r, max_angle)
+    cmd = [gdr, "2d", inp, "-o", out, "--check", "--backend", "cpu"] + options(r, max_angle) + list(extra)
     try:
         p = subprocess.run(cmd, capture_output=True, timeout=timeout)
     except subprocess.TimeoutExpired:
@@ -222,13 +222,14 @@ def main():
     ap.add_argument("--work", default="fuzz2d-work")
     ap.add_argument("--max-angle", type=float, default=33,
                     help="largest minimum angle tried (33: Triangle's practical limit)")
+    ap.add_argument("--extra", default="", help="more gdr options for every run, e.g. '--cdt parallel'")
     a = ap.parse_args()
     os.makedirs(a.work, exist_ok=True)
     start = time.time()
     runs = failures = 0
     seed = a.seed * 1000003
     while (a.runs and runs < a.runs) or (not a.runs and time.time() - start < a.seconds):
-        what, cmd, problem = one_run(a.gdr, a.work, seed, a.timeout, a.max_angle)
+        what, cmd, problem = one_run(a.gdr, a.work, seed, a.timeout, a.max_angle, a.extra.split())
         runs += 1
         if problem:
             failures += 1
