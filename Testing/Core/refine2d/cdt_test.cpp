@@ -13,6 +13,7 @@
 #include "gdr/io.h"
 #include "gdr/refine2d.h"
 #include "gdr/validate.h"
+#include "pslg_shapes.h"
 
 namespace {
 
@@ -20,20 +21,8 @@ using gdr::Backend;
 using gdr::CdtMethod;
 using gdr::Point2;
 using gdr::Pslg;
-constexpr double kPi = 3.14159265358979323846;
-
-void add_loop(Pslg& g, const std::vector<Point2>& pts) {
-  const int base = static_cast<int>(g.points.size());
-  const int n = static_cast<int>(pts.size());
-  for (int i = 0; i < n; ++i) {
-    g.points.push_back(pts[i]);
-    g.segments.push_back({base + i, base + (i + 1) % n});
-  }
-}
-
-std::vector<Point2> box(double x0, double y0, double x1, double y1) {
-  return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
-}
+using gdr_test::add_loop;
+using gdr_test::kPi;
 
 // Triangles as sorted triples of point coordinates' indices, each rotated to start at its
 // smallest vertex (orientation kept).
@@ -97,7 +86,7 @@ TEST_P(ParallelCdt, ClusteredPoints) {
   std::normal_distribution<double> u(0, 1e-6);
   Pslg g;
   for (int i = 0; i < 5000; ++i) g.points.push_back({0.3 + u(rng), 0.2 + u(rng)});
-  add_loop(g, box(-1, -1, 1, 1));
+  add_loop(g, gdr_test::square(-1, -1, 1, 1));
   compare(g, false, true);
   compare(g, true, true);
 }
@@ -115,7 +104,7 @@ TEST_P(ParallelCdt, RandomSegmentsInCells) {
       g.segments.push_back({a, a + 1});
     }
   compare(g, false, true);
-  add_loop(g, box(-0.5, -0.5, n + 0.5, n + 0.5));
+  add_loop(g, gdr_test::square(-0.5, -0.5, n + 0.5, n + 0.5));
   compare(g, true, true);
 }
 
@@ -141,7 +130,7 @@ TEST_P(ParallelCdt, CocircularGridAndCircle) {
   const int n = 60;
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) g.points.push_back({double(i), double(j)});
-  add_loop(g, box(-1, -1, n, n));
+  add_loop(g, gdr_test::square(-1, -1, n, n));
   g.segments.push_back({0, n * n - 1});  // the grid's diagonal: through grid points, split
   compare(g, false, false);
   Pslg c;
@@ -165,9 +154,9 @@ TEST_P(ParallelCdt, CollinearPointsOnTheHullAndOnSegments) {
 
 TEST_P(ParallelCdt, HolesAndRegions) {
   Pslg g;
-  add_loop(g, box(0, 0, 4, 2));
-  add_loop(g, box(0.5, 0.5, 1.5, 1.5));
-  add_loop(g, box(2.5, 0.5, 3.5, 1.5));
+  add_loop(g, gdr_test::square(0, 0, 4, 2));
+  add_loop(g, gdr_test::square(0.5, 0.5, 1.5, 1.5));
+  add_loop(g, gdr_test::square(2.5, 0.5, 3.5, 1.5));
   g.holes.push_back({1, 1});
   gdr::RegionSeed2 r;
   r.point = {3, 1};
@@ -199,7 +188,7 @@ TEST_P(ParallelCdt, SharedDataPslgs) {
 // Refinement from the parallel CDT: a valid quality mesh, as from CGAL's.
 TEST_P(ParallelCdt, RefinementFromIt) {
   Pslg g;
-  add_loop(g, box(0, 0, 3, 1));
+  add_loop(g, gdr_test::square(0, 0, 3, 1));
   std::mt19937 rng(13);
   std::uniform_real_distribution<double> u(0.1, 0.9);
   for (int i = 0; i < 200; ++i) g.points.push_back({3 * u(rng), u(rng)});

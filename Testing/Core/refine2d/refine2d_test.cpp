@@ -14,33 +14,17 @@
 #include "gdr/io.h"
 #include "gdr/refine2d.h"
 #include "gdr/validate.h"
+#include "pslg_shapes.h"
 
 namespace {
 
 using gdr::Backend;
 using gdr::Point2;
 using gdr::Pslg;
-constexpr double kPi = 3.14159265358979323846;
-
-void add_loop(Pslg& g, const std::vector<Point2>& pts) {
-  const int base = static_cast<int>(g.points.size());
-  const int n = static_cast<int>(pts.size());
-  for (int i = 0; i < n; ++i) {
-    g.points.push_back(pts[i]);
-    g.segments.push_back({base + i, base + (i + 1) % n});
-  }
-}
-
-std::vector<Point2> regular_polygon(int n, double r, double cx = 0, double cy = 0, double phase = 0) {
-  std::vector<Point2> p;
-  for (int i = 0; i < n; ++i)
-    p.push_back({cx + r * std::cos(phase + 2 * kPi * i / n), cy + r * std::sin(phase + 2 * kPi * i / n)});
-  return p;
-}
-
-std::vector<Point2> square(double x0, double y0, double x1, double y1) {
-  return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
-}
+using gdr_test::add_loop;
+using gdr_test::kPi;
+using gdr_test::regular_polygon;
+using gdr_test::square;
 
 // Subsegments whose reported input segment does not hold both their endpoints (split points
 // are rounded, so "on" is up to a relative 1e-9; this checks labels, not topology).

@@ -9,18 +9,13 @@
 #include "gdr/backend.h"
 #include "gdr/refine2d.h"
 #include "gdr/validate.h"
+#include "pslg_shapes.h"
 
 namespace {
 
 using gdr::Point2;
 using gdr::Pslg;
-
-void add_loop(Pslg& g, const std::vector<Point2>& pts) {
-  const int base = static_cast<int>(g.points.size());
-  for (const Point2& p : pts) g.points.push_back(p);
-  const int n = static_cast<int>(pts.size());
-  for (int i = 0; i < n; ++i) g.segments.push_back({base + i, base + (i + 1) % n});
-}
+using gdr_test::add_loop;
 
 // The 8-point square-in-square, scaled by s.
 Pslg square_in_square(double s) {
