@@ -117,8 +117,10 @@ std::vector<SegmentConflict> find_segment_conflicts(const std::vector<Point2>& P
   std::vector<SegmentConflict> found;
   if (S.size() < 2) return found;
   double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
-  for (const auto& s : S)
-    for (int v : s) {
+  const long long ns = static_cast<long long>(S.size());
+#pragma omp parallel for reduction(min : x0, y0) reduction(max : x1, y1)
+  for (long long i = 0; i < ns; ++i)
+    for (int v : S[i]) {
       x0 = std::min(x0, P[v].x), x1 = std::max(x1, P[v].x);
       y0 = std::min(y0, P[v].y), y1 = std::max(y1, P[v].y);
     }
@@ -140,14 +142,24 @@ std::vector<SegmentConflict> find_segment_conflicts(const std::vector<Point2>& P
     for (int cy = cy0; cy <= cy1; ++cy)
       for (int cx = cx0; cx <= cx1; ++cx) f(static_cast<std::size_t>(cy) * g + cx);
   };
+  // Counted and filled in parallel (atomics), then each cell's list sorted, so that what is
+  // found does not depend on thread timing.
   std::vector<std::size_t> begin(ncells + 1, 0);
-  for (std::size_t i = 0; i < S.size(); ++i) for_cells(i, [&](std::size_t c) { ++begin[c + 1]; });
+#pragma omp parallel for
+  for (long long i = 0; i < ns; ++i)
+    for_cells(i, [&](std::size_t c) { __atomic_fetch_add(&begin[c + 1], 1, __ATOMIC_RELAXED); });
   for (std::size_t c = 0; c < ncells; ++c) begin[c + 1] += begin[c];
   std::vector<int> in_cell(begin[ncells]);
   {
     std::vector<std::size_t> fill(begin.begin(), begin.end() - 1);
-    for (std::size_t i = 0; i < S.size(); ++i)
-      for_cells(i, [&](std::size_t c) { in_cell[fill[c]++] = static_cast<int>(i); });
+#pragma omp parallel for
+    for (long long i = 0; i < ns; ++i)
+      for_cells(i, [&](std::size_t c) {
+        in_cell[__atomic_fetch_add(&fill[c], 1, __ATOMIC_RELAXED)] = static_cast<int>(i);
+      });
+    const long long nc = static_cast<long long>(ncells);
+#pragma omp parallel for schedule(dynamic, 4096)
+    for (long long c = 0; c < nc; ++c) std::sort(in_cell.begin() + begin[c], in_cell.begin() + begin[c + 1]);
   }
   // Points that end no segment may still lie on one (the CDT would split it silently).
   std::vector<char> is_end(P.size(), 0);
@@ -464,24 +476,33 @@ CleanPslg clean_input(const Pslg& in, const Refine2dOptions& o, const Callbacks&
   const auto& P = in.points;
   // (-0 and 0 compare equal as doubles, and NaN was refused.)
   const std::vector<int> order = sorted_indices(np, [&](int i) { return std::make_pair(P[i].x, P[i].y); });
+  // Each run of equal points (sorted by index within the run) starts at its first in input
+  // order; runs are handled by their starts in parallel, and the kept points are numbered by
+  // a scan.
+  const long long npl = static_cast<long long>(np);
+  const auto same = [&](int a, int b) { return P[a].x == P[b].x && P[a].y == P[b].y; };
   std::vector<int> first(np);  // first input index with the same coordinates
-  for (std::size_t k = 0; k < np; ++k) {
-    const int i = order[k], h = k ? order[k - 1] : -1;
-    first[i] = h >= 0 && P[h].x == P[i].x && P[h].y == P[i].y ? first[h] : i;
+#pragma omp parallel for
+  for (long long k = 0; k < npl; ++k) {
+    if (k > 0 && same(order[k - 1], order[k])) continue;  // not a run start
+    for (long long j = k; j < npl && (j == k || same(order[k], order[j])); ++j) first[order[j]] = order[k];
   }
   std::vector<int> remap(np);
-  g.points.reserve(np);
-  g.point_origin.reserve(np);
-  for (std::size_t i = 0; i < np; ++i) {
-    if (first[i] == static_cast<int>(i)) {
-      remap[i] = static_cast<int>(g.points.size());
-      g.points.push_back(P[i]);
-      g.point_origin.push_back(static_cast<int>(i));
-    } else {
-      remap[i] = remap[first[i]];  // first[i] < i: already numbered
-      ++g.duplicates_merged;
+  long long kept = 0;
+  for (long long i = 0; i < npl; ++i) remap[i] = first[i] == i ? static_cast<int>(kept++) : -1;
+  g.points.resize(kept);
+  g.point_origin.resize(kept);
+  g.duplicates_merged = npl - kept;
+#pragma omp parallel for
+  for (long long i = 0; i < npl; ++i) {
+    if (remap[i] >= 0) {
+      g.points[remap[i]] = P[i];
+      g.point_origin[remap[i]] = static_cast<int>(i);
     }
   }
+#pragma omp parallel for
+  for (long long i = 0; i < npl; ++i)
+    if (remap[i] < 0) remap[i] = remap[first[i]];  // first[i] < i is kept
   if (g.duplicates_merged && cb.warning)
     cb.warning(std::to_string(g.duplicates_merged) + " duplicate point(s) merged");
   g.segments.resize(in.segments.size());

@@ -357,8 +357,12 @@ struct PowerOfTwoScale {
   int grid_exp = 260;
   explicit PowerOfTwoScale(const Pslg& in) {
     double m = 0;
-    for (const Point2& p : in.points)
+    const long long n = static_cast<long long>(in.points.size());
+#pragma omp parallel for reduction(max : m)
+    for (long long i = 0; i < n; ++i) {
+      const Point2& p = in.points[i];
       if (std::isfinite(p.x) && std::isfinite(p.y)) m = std::max({m, std::fabs(p.x), std::fabs(p.y)});
+    }
     if (m > 0) k = -std::ilogb(m);
     grid_exp = std::min(grid_exp, 1074 - k);
   }
@@ -368,14 +372,18 @@ struct PowerOfTwoScale {
   // Refuses coordinates that are not multiples of 2^-grid_exp once scaled: magnitudes more
   // than about 2^208 (1e62) below the largest, where the predicates could not stay exact.
   void check_spread(const Pslg& in) const {
-    long long count = 0;
-    std::size_t first = 0;
-    for (std::size_t i = 0; i < in.points.size(); ++i) {
+    long long count = 0, first = LLONG_MAX;
+    const long long n = static_cast<long long>(in.points.size());
+#pragma omp parallel for reduction(+ : count) reduction(min : first)
+    for (long long i = 0; i < n; ++i) {
       const Point2 q = apply(in.points[i], 1);
       bool off = false;
       for (const double v : {q.x, q.y})
         off = off || (std::isfinite(v) && std::ldexp(v, grid_exp) != std::rint(std::ldexp(v, grid_exp)));
-      if (off && count++ == 0) first = i;
+      if (off) {
+        ++count;
+        first = std::min(first, i);
+      }
     }
     if (!count) return;
     const Point2& p = in.points[first];
@@ -391,7 +399,9 @@ struct PowerOfTwoScale {
   }
   Pslg scaled(const Pslg& in) const {
     Pslg out = in;
-    for (Point2& p : out.points) p = apply(p, 1);
+    const long long n = static_cast<long long>(out.points.size());
+#pragma omp parallel for
+    for (long long i = 0; i < n; ++i) out.points[i] = apply(out.points[i], 1);
     for (Point2& p : out.holes) p = apply(p, 1);
     for (RegionSeed2& r : out.regions) {
       r.point = apply(r.point, 1);
