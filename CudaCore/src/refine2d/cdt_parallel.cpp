@@ -2,6 +2,7 @@
 // threads), and the conversion of any CDT's triangles into the engine's HostMesh, shared
 // with the CGAL path.
 #include <algorithm>
+#include <chrono>
 #include <string>
 #include <vector>
 
@@ -185,6 +186,8 @@ HostMesh initial_cdt_parallel(const CleanPslg& g, bool remove_exterior, bool gpu
   segments.reserve(2 * g.segments.size());
   for (const auto& s : g.segments) segments.insert(segments.end(), {s[0], s[1]});
   RawCdt raw;
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
 #if defined(GDR_HAVE_CUDA)
   if (gpu) raw = parallel_cdt_cuda(xy, segments, !remove_exterior);
   else
@@ -193,7 +196,10 @@ HostMesh initial_cdt_parallel(const CleanPslg& g, bool remove_exterior, bool gpu
     (void)gpu;
     raw = parallel_cdt_cpu(xy, segments, !remove_exterior);
   }
-  if (phases) *phases = raw.phases;
+  // Beside the device phases: the whole device call (set-up, transfers and memory handed
+  // back included) and the domain's assembly on the host.
+  const auto t1 = Clock::now();
+  raw.phases.push_back({"whole device call", std::chrono::duration<double>(t1 - t0).count()});
   CdtTriangles c;
   c.tv = std::move(raw.tv);
   c.tn = std::move(raw.tn);
@@ -205,7 +211,10 @@ HostMesh initial_cdt_parallel(const CleanPslg& g, bool remove_exterior, bool gpu
     if (c.tv[3 * t] >= n || c.tv[3 * t + 1] >= n || c.tv[3 * t + 2] >= n) c.exterior_seeds.push_back(t);
   for (const Point2& h : g.holes) c.hole_tris.push_back(locate(c.tv, c.tn, xy.data(), h));
   for (const auto& r : g.regions) c.region_tris.push_back(locate(c.tv, c.tn, xy.data(), r.point));
-  return assemble_cdt(g, std::move(c));
+  HostMesh m = assemble_cdt(g, std::move(c));
+  raw.phases.push_back({"assembly (host)", std::chrono::duration<double>(Clock::now() - t1).count()});
+  if (phases) *phases = std::move(raw.phases);
+  return m;
 }
 
 }  // namespace gdr::r2d
