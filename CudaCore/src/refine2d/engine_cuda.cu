@@ -11,11 +11,17 @@ EngineResult refine_mesh_cuda(const HostMesh& mesh, MeshResult& out, const Engin
   return refine_mesh<exec::Cuda>(mesh, out, params, cb);
 }
 
+// The pool keeps the CDT's memory for the refinement that follows (refine_2d hands it back
+// when the run ends, trim_device_memory_cuda); after an error it is handed back at once.
 RawCdt parallel_cdt_cuda(const std::vector<double>& xy, const std::vector<int>& segments, bool hull) {
-  struct Trim {
-    ~Trim() { exec::Ops<exec::Cuda>::trim(); }
-  } trim;
-  return parallel_cdt<exec::Cuda>(xy, segments, hull);
+  try {
+    return parallel_cdt<exec::Cuda>(xy, segments, hull);
+  } catch (...) {
+    exec::Ops<exec::Cuda>::trim();
+    throw;
+  }
 }
+
+void trim_device_memory_cuda() { exec::Ops<exec::Cuda>::trim(); }
 
 }  // namespace gdr::r2d

@@ -12,6 +12,7 @@ RawCdt parallel_cdt_cpu(const std::vector<double>& xy, const std::vector<int>& s
 EngineResult refine_mesh_cuda(const HostMesh& mesh, MeshResult& out, const EngineParams& params,
                              const Callbacks& cb);
 RawCdt parallel_cdt_cuda(const std::vector<double>& xy, const std::vector<int>& segments, bool hull);
+void trim_device_memory_cuda();  // cached device memory back to the driver
 #endif
 
 }  // namespace gdr::r2d

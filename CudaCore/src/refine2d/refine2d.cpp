@@ -594,6 +594,16 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
   progress(0.02, "constrained Delaunay triangulation");
   auto t0 = Clock::now();
   const CdtChoice cdt = choose_cdt(options, pslg.points.size() + pslg.segments.size());
+  // The GPU CDT leaves its memory cached for the refinement; hand it back when the run ends,
+  // however it ends (the refinement may run on the CPU, or not at all after a refusal).
+  struct TrimDevice {
+    bool on;
+    ~TrimDevice() {
+#if defined(GDR_HAVE_CUDA)
+      if (on) r2d::trim_device_memory_cuda();
+#endif
+    }
+  } trim_device{cdt.gpu};
   r2d::HostMesh mesh = cdt.parallel
                            ? r2d::initial_cdt_parallel(pslg, options.remove_exterior, cdt.gpu, &st.cdt_phases)
                            : r2d::initial_cdt(pslg, options.remove_exterior);
