@@ -2,6 +2,7 @@
 // engine.h launches one of these over its work list on the CPU (OpenMP) or the GPU (CUDA).
 #pragma once
 #include <cmath>
+#include <cstring>
 
 #include "exec/hd.h"
 #include "exec/priority.h"
@@ -11,6 +12,17 @@
 namespace gdr::r2d {
 
 using exec::u64;
+
+// The bits of a double: for values >= 0 their order is the values' order.
+GDR_HD_INLINE u64 bits_of(double v) {
+#if defined(__CUDA_ARCH__)
+  return static_cast<u64>(__double_as_longlong(v));
+#else
+  u64 b;
+  std::memcpy(&b, &v, sizeof b);
+  return b;
+#endif
+}
 
 GDR_HD_INLINE int next3(int i) { return i == 2 ? 0 : i + 1; }
 GDR_HD_INLINE int prev3(int i) { return i == 0 ? 2 : i - 1; }
@@ -61,6 +73,19 @@ GDR_HD_INLINE int segment_of(const MeshView& m, int a, int b) {
 GDR_HD_INLINE double dist2(const double* a, const double* b) {
   const double dx = a[0] - b[0], dy = a[1] - b[1];
   return dx * dx + dy * dy;
+}
+
+// Twice the area of triangle t and the least sin^2 of its angles. The smallest angle faces
+// the shortest edge and is at most 60 degrees, where the sine grows: sin^2 = (2 area)^2 / the
+// product of the two longer squared edges (no trigonometry per triangle).
+GDR_HD_INLINE void triangle_measures(const MeshView& m, int t, double& area2, double& sin2) {
+  const double* a = pt(m, m.tv[3 * t]);
+  const double* b = pt(m, m.tv[3 * t + 1]);
+  const double* c = pt(m, m.tv[3 * t + 2]);
+  area2 = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+  const double la = dist2(b, c), lb = dist2(c, a), lc = dist2(a, b);
+  const double others = fmax(la * lb, fmax(lb * lc, lc * la));
+  sin2 = others > 0 ? area2 * area2 / others : 0.0;
 }
 
 // Does p encroach the subsegment ab? Ruppert: strictly inside the diametral circle (exact).

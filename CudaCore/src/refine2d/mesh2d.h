@@ -59,6 +59,8 @@ struct MeshResult {
   exec::HostVector<int> bad;             // triangles left bad: 2t, or 2t+1 where the
                                          // small-input-angle rule protects them
   exec::HostVector<int> tregion;         // per triangle: region number (empty: no regions)
+  double area = 0;                       // the mesh's area (in the engine's coordinates)
+  double min_sin2 = 1;                   // the least sin^2 of an angle of its triangles
   int triangles() const { return static_cast<int>(tv.size() / 3); }
   int points() const { return static_cast<int>(ptype.size()); }
 };

@@ -32,9 +32,6 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-double squared_distance(const Point2& a, const Point2& b) {
-  return (a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y);
-}
 
 r2d::Criteria make_criteria(const Refine2dOptions& o) {
   r2d::Criteria c;
@@ -759,26 +756,12 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
                         options.region_attributes, out);
 
   // What is left bad (classified on the device), and how much of it the small-angle rule
-  // protected.
-  // The smallest angle faces the shortest edge and is at most 60 degrees, where the sine
-  // grows: track the least sin^2 = (2 area)^2 / (product of the two longer squared edges),
-  // and take one arcsine at the end (no trigonometry per triangle).
-  // (On the scaled coordinates, where no product overflows or underflows.)
+  // protected; the total area and least sin^2 of an angle come from the engine (download).
   const auto scaled_point = [&](int v) { return Point2{mesh_out.xy[2 * v], mesh_out.xy[2 * v + 1]}; };
   const auto scaled_area = [&](const std::array<int, 3>& tri) {
     return triangle_area(scaled_point(tri[0]), scaled_point(tri[1]), scaled_point(tri[2]));
   };
-  double total_area = 0, min_sin2 = 1;
-#pragma omp parallel for reduction(+ : total_area) reduction(min : min_sin2)
-  for (int t = 0; t < nt; ++t) {
-    const Point2 a = scaled_point(out.triangles[t][0]), b = scaled_point(out.triangles[t][1]),
-                 c = scaled_point(out.triangles[t][2]);
-    const double area = triangle_area(a, b, c);
-    total_area += area;
-    const double la = squared_distance(b, c), lb = squared_distance(c, a), lc = squared_distance(a, b);
-    const double others = std::max({la * lb, lb * lc, lc * la});  // the two longer edges
-    min_sin2 = std::min(min_sin2, others > 0 ? 4 * area * area / others : 0.0);
-  }
+  const double total_area = mesh_out.area, min_sin2 = mesh_out.min_sin2;
   const double min_angle = std::asin(std::sqrt(std::min(1.0, min_sin2))) * 180.0 / kPi;
   double bad_area = 0;
   long long protected_bad = 0;
