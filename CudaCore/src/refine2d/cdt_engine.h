@@ -29,9 +29,6 @@ namespace gdr::r2d {
 struct RawCdt {
   std::vector<int> tv, tn, tseg;
   std::vector<PhaseTime> phases;
-  int rounds = 0;           // point insertion rounds
-  int segment_rounds = 0;   // segment recovery rounds
-  long long missing = 0;    // segments that were not Delaunay edges
 };
 
 // The convex hull's edges as segments (2 per edge, counter-clockwise, collinear points kept
@@ -95,14 +92,10 @@ struct ParallelCdt {
     pending.resize_discard(n);
     exec::iota<Space>(pending.data(), n);
     std::size_t np = n;
-    long long dead = 0;
     clock.template stop<Space>("dt setup");
     while (np > 0) {
-      ++res.rounds;
-      const long long won = insertion_round(np);
-      if (won <= 0 || error.get(0))
+      if (insertion_round(np) <= 0 || error.get(0))
         throw Error(Status::InternalError, "parallel CDT: point insertion made no progress");
-      dead += count_dead_after(won);
       np = next_pending(np);
       if (4 * dead > dm.ntri || np == 0) {  // compaction (S1): loc follows the moves
         detail::compact_triangles(dm, FollowMoves<Space>{np, pending.data(), loc.data()});
@@ -112,8 +105,7 @@ struct ParallelCdt {
     }
   }
 
-  long long last_new = 0;
-  long long count_dead_after(long long won) { return last_new - 2 * won; }
+  long long dead = 0;  // dead triangles since the last compaction
 
   // One round: candidates, one per triangle, cavities, winners, fans, relocation.
   long long insertion_round(std::size_t np) {
@@ -191,21 +183,9 @@ struct ParallelCdt {
       won = Ops::exclusive_scan(w, w, ns);
     }
     clock.template stop<Space>("dt insert");
-    // Points of dead triangles walk from their cavity's fan.
-    int* lc = loc.data();
-    const int* an = anchor.data();
-    int* err = error.data();
-    Ops::for_each(np, [=] GDR_HD(long long j) {
-      if (dn[j]) return;
-      const int p = pend[j];
-      const int t = lc[p];
-      if (!(mv.tflag[t] & kDead)) return;
-      const int u = walk_to(mv, an[mv.mark[t] - 1], mv.xy + 2 * p, 1 << 24);
-      if (u < 0) *err = 1;
-      else lc[p] = u;
-    });
+    Ops::for_each(np, Relocate{mv, pending.data(), done.data(), loc.data(), anchor.data(), error.data()});
     clock.template stop<Space>("dt relocate");
-    last_new = new_tris;
+    dead += new_tris - 2 * won;  // a cavity of k triangles leaves k dead for k + 2 new
     return won;
   }
 
@@ -251,16 +231,13 @@ struct ParallelCdt {
     miss.resize_discard(ns);
     exec::iota<Space>(miss.data(), ns);
     std::size_t nm = ns;
-    bool first = true;
+    int rounds = 0;
     while (nm > 0) {
       find_segments(nm);  // present ones are marked and dropped; start codes for the rest
       nm = drop_marked(nm);
-      if (first) res.missing = static_cast<long long>(nm);
-      first = false;
       clock.template stop<Space>("segments find");
       if (nm == 0) break;
-      ++res.segment_rounds;
-      if (res.segment_rounds > 1000000)
+      if (++rounds > 1000000)
         throw Error(Status::InternalError, "parallel CDT: segment recovery made no progress");
       recovery_round(nm);
     }
@@ -521,9 +498,6 @@ RawCdt parallel_cdt(const std::vector<double>& xy, std::vector<int> segments, bo
   RawCdt out;
   cdt.download(out);
   out.phases = cdt.res.phases;
-  out.rounds = cdt.res.rounds;
-  out.segment_rounds = cdt.res.segment_rounds;
-  out.missing = cdt.res.missing;
   return out;
 }
 

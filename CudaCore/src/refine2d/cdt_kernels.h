@@ -54,20 +54,21 @@ struct MakePointCandidates {
   }
 };
 
-// After an insertion round: a point whose triangle died walks from a new triangle of the
-// cavity that took it (the cavity's region is covered by its fan).
+// After an insertion round: a point still to insert whose triangle died walks from a new
+// triangle of the cavity that took it (the cavity's region is covered by its fan).
 struct Relocate {
   MeshView m;
   const int* pending;
+  const int* done;    // per pending entry: inserted this round
   int* loc;
   const int* anchor;  // per winner: one of its new triangles
   int* error;
   GDR_HD void operator()(long long j) const {
+    if (done[j]) return;
     const int p = pending[j];
     const int t = loc[p];
     if (!(m.tflag[t] & kDead)) return;
-    const int k = m.mark[t] - 1;  // the winner whose cavity took t
-    const int u = walk_to(m, anchor[k], m.xy + 2 * p, 1 << 20);
+    const int u = walk_to(m, anchor[m.mark[t] - 1], m.xy + 2 * p, 1 << 24);  // the winner's
     if (u < 0) *error = 1;
     else loc[p] = u;
   }
