@@ -601,10 +601,21 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
 #endif
     }
   } trim_device{cdt.gpu};
-  r2d::HostMesh mesh = cdt.parallel
-                           ? r2d::initial_cdt_parallel(pslg, options.remove_exterior, cdt.gpu, &st.cdt_phases)
-                           : r2d::initial_cdt(pslg, options.remove_exterior);
-  st.cdt_method = !cdt.parallel ? "cgal" : (cdt.gpu ? "parallel-gpu" : "parallel-cpu");
+  r2d::HostMesh mesh;
+  bool parallel = cdt.parallel;
+  if (parallel) {
+    try {
+      mesh = r2d::initial_cdt_parallel(pslg, options.remove_exterior, cdt.gpu, &st.cdt_phases);
+    } catch (const Error& e) {
+      // Chosen automatically, the GPU's CDT gives way to CGAL's when the device is full.
+      if (e.status() != Status::OutOfDeviceMemory || options.cdt != CdtMethod::Auto) throw;
+      if (cb.warning) cb.warning(std::string("the GPU's CDT ran out of memory; CGAL's on the CPU instead: ") + e.what());
+      parallel = false;
+      st.cdt_phases.clear();
+    }
+  }
+  if (!parallel) mesh = r2d::initial_cdt(pslg, options.remove_exterior);
+  st.cdt_method = !parallel ? "cgal" : (cdt.gpu ? "parallel-gpu" : "parallel-cpu");
   if (cdt.gpu) mark_gpu_warm();
   st.cdt_seconds = since(t0);
   if (aborted()) throw Error(Status::Aborted, "aborted by the caller");
