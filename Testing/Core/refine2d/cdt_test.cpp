@@ -92,17 +92,8 @@ TEST_P(ParallelCdt, ClusteredPoints) {
 }
 
 TEST_P(ParallelCdt, RandomSegmentsInCells) {
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<double> u(0.05, 0.95);
-  Pslg g;
   const int n = 60;
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      const int a = static_cast<int>(g.points.size());
-      g.points.push_back({i + u(rng), j + u(rng)});
-      g.points.push_back({i + u(rng), j + u(rng)});
-      g.segments.push_back({a, a + 1});
-    }
+  Pslg g = gdr_test::segments_in_cells(n, 7);
   compare(g, false, true);
   add_loop(g, gdr_test::square(-0.5, -0.5, n + 0.5, n + 0.5));
   compare(g, true, true);

@@ -280,18 +280,7 @@ TEST_P(Refine2d, NearlyCocircularPoints) {
 }
 
 TEST_P(Refine2d, RandomSegmentsInCells) {
-  // One random segment per grid cell: many segments, no crossings by construction.
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<double> u(0.05, 0.95);
-  Pslg g;
-  const int n = 30;
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      const int a = static_cast<int>(g.points.size());
-      g.points.push_back({i + u(rng), j + u(rng)});
-      g.points.push_back({i + u(rng), j + u(rng)});
-      g.segments.push_back({a, a + 1});
-    }
+  const Pslg g = gdr_test::segments_in_cells(30, 7);
   auto o = options();
   auto r = mesh(g, o);
   EXPECT_EQ(r.stats.bad_triangles, r.stats.small_angle_bad);
