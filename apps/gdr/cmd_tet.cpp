@@ -178,7 +178,8 @@ void print_summary(const ArgsTet& a, const Surface& input, const QualityTetResul
                           with_commas(s.output_tets) + " tetrahedra, " +
                           with_commas(s.output_subfaces) + " subfaces"});
   info.row({"Steiner points", with_commas(s.steiner_points) + " (" +
-                                  with_commas(s.cdt_steiner_points) + " in the CDT) in " +
+                                  with_commas(s.cdt_steiner_points) + " in the CDT, " +
+                                  with_commas(s.interior_seeds) + " interior seeds) in " +
                                   std::to_string(s.iterations) + " iterations"});
   if (s.steiner_cap_reached)
     info.row({"", std::string("stopped at the ") + (s.automatic_steiner_cap ? "automatic " : "") +
@@ -255,6 +256,7 @@ void write_stats_json(const std::string& path, const ArgsTet& a, const QualityTe
   j.field("duplicate_points_merged", s.duplicate_points_merged);
   j.field("duplicate_triangles_merged", s.duplicate_triangles_merged);
   j.field("cdt_steiner_points", s.cdt_steiner_points);
+  j.field("interior_seeds", s.interior_seeds);
   j.field("steiner_points", s.steiner_points);
   j.field("output_points", s.output_points);
   j.field("output_tets", s.output_tets);

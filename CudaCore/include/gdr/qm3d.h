@@ -44,6 +44,7 @@ struct QualityTetStats {
   long long duplicate_points_merged = 0;
   long long duplicate_triangles_merged = 0;
   long long cdt_steiner_points = 0;     // added by the initial CDT (boundary recovery)
+  long long interior_seeds = 0;         // lattice points put inside with the CDT (cdt3d.h)
   long long steiner_points = 0;         // added in total (CDT and refinement)
   long long output_points = 0;
   long long output_tets = 0;

@@ -73,12 +73,22 @@ Plc check_surface(const Surface& surface, const CheckOptions& options = {},
 // stay, unreferenced), then TetGen's Steiner points in use, typed by what they lie on.
 // Subfaces: the faces on PLC facets between domain tets or on the domain boundary. The
 // PLC needs check_surface with require_closed. Throws Error(InvalidInput) when TetGen fails.
-m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks = {});
+// `seeds` (x, y, z each; see interior_seeds) join the Delaunay tetrahedralization as
+// isolated points; those in the domain come back as free points after the Steiner points.
+m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks = {},
+                             const std::vector<double>& seeds = {});
 
 // The Delaunay tetrahedralization of the points xyz (3 per point; no constraints, TetGen
 // without -p): every tetrahedron of the convex hull, neighbours linked (-1 on the hull), no
 // subfaces or subsegments, points typed kInputPoint in their order. The restricted mesher's
 // initial triangulation. Throws Error when TetGen fails (e.g. all points coplanar).
 m3d::HostTetMesh delaunay_tetrahedralization(const std::vector<double>& xyz);
+
+// Interior seeds (seeds.cpp): x, y, z of points of a lattice over the PLC's bounding box,
+// of spacing h = `spacing_factor` times the mean triangle edge length next to the surface
+// and coarser deeper in, that lie at least h/2 from every triangle and are not connected to
+// the outside. Those in cavities or holes are kept (initial_cdt drops them). Empty for a
+// lattice of under 64 cells.
+std::vector<double> interior_seeds(const Plc& plc, double spacing_factor);
 
 }  // namespace gdr::cdt3d

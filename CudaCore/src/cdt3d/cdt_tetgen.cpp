@@ -49,20 +49,22 @@ std::string str(long long v) { return std::to_string(v); }
 }
 
 // Fills TetGen's input. TetGen frees these arrays itself (tetgenio's destructor).
-void fill_input(const Plc& plc, tetgenio& in) {
-  const int np = static_cast<int>(plc.points.size());
+void fill_input(const Plc& plc, const std::vector<double>& seeds, tetgenio& in) {
+  const int nin = static_cast<int>(plc.points.size());
+  const int np = nin + static_cast<int>(seeds.size() / 3);
   const int nt = static_cast<int>(plc.triangles.size());
   const int nf = static_cast<int>(plc.facet_origin.size());
   in.firstnumber = 0;
   in.numberofpoints = np;
   in.pointlist = new REAL[3 * static_cast<std::size_t>(np)];
   in.pointmarkerlist = new int[np];  // zeros: asks TetGen for Steiner point markers
-  for (int i = 0; i < np; ++i) {
+  for (int i = 0; i < nin; ++i) {
     in.pointlist[3 * i] = plc.points[i].x;
     in.pointlist[3 * i + 1] = plc.points[i].y;
     in.pointlist[3 * i + 2] = plc.points[i].z;
-    in.pointmarkerlist[i] = 0;
   }
+  std::copy(seeds.begin(), seeds.end(), in.pointlist + 3 * static_cast<std::size_t>(nin));
+  std::fill(in.pointmarkerlist, in.pointmarkerlist + np, 0);
   in.numberoffacets = nt;
   in.facetlist = new tetgenio::facet[nt];
   in.facetmarkerlist = new int[nt];
@@ -459,7 +461,7 @@ void mark_subsegments(const Plc& plc, HostTetMesh& m) {
 
 }  // namespace
 
-m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks) {
+m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks, const std::vector<double>& seeds) {
   if (plc.triangle_cell.size() != plc.triangles.size() || plc.cell_in_domain.empty())
     throw Error(Status::InvalidInput, "initial_cdt needs a closed surface checked with require_closed");
   if (callbacks.progress) callbacks.progress(0.0, "constrained Delaunay tetrahedralization (TetGen)");
@@ -473,7 +475,7 @@ m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks) {
     last = now;
   };
   tetgenio in, out;
-  fill_input(plc, in);
+  fill_input(plc, seeds, in);
   stamp("fill TetGen input");
   try {
     run_tetgen("pcnO0JQ", in, out);

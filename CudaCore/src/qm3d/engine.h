@@ -22,7 +22,7 @@
 
 namespace gdr::qm3d {
 
-// The paper's design strategies and two of ours, each of which can be switched off to
+// The paper's design strategies and some of ours, each of which can be switched off to
 // measure what it buys (benchmarks only: GDR_DISABLE, see quality_tet_mesh.cpp).
 struct Strategies {
   bool compaction = true;    // S1: compact dead elements during refinement, not only at the end
@@ -33,6 +33,7 @@ struct Strategies {
   bool grid_rounds = true;   // large ExpandList windows run their rounds in one grid-wide launch
   bool worst_first = true;   // tetrahedra bad by shape alone worst first, not larger first
   bool crowding = true;      // S3: fewer competitors while most of them lose (large cavities)
+  bool interior_seeds = true;  // a graded lattice inside goes into the CDT (cdt3d/seeds.cpp)
 };
 
 struct EngineParams {
@@ -169,10 +170,10 @@ struct Engine {
         }
         std::fprintf(stderr, "gdr-trace phases ms:%s\n", phase_ms.c_str());
         std::fprintf(stderr,
-                     "gdr-trace iter %d: ms %.2f, tets %d, subfaces %d, points %d, elements %zu, "
+                     "gdr-trace iter %d: ms %.2f, tets %d, subfaces %d, points %d, elements %zu, bad volume %.3g%%, "
                      "candidates %zu, won %lld, rounds %d, tuples %zu, MB %.1f (peak %.1f), "
                      "lost/encroach/touch/star/defer/cap/delaunay %s\n",
-                     iter + 1, ms, dm.ntet, dm.nsub, dm.npts, nl, ns, won, rounds, tuples.size(),
+                     iter + 1, ms, dm.ntet, dm.nsub, dm.npts, nl, 100 * bad_volume / domain_volume, ns, won, rounds, tuples.size(),
                      exec::memory_counter<Space>().current / 1048576.0,
                      exec::memory_counter<Space>().peak / 1048576.0, failure_counts().c_str());
       }
@@ -241,6 +242,13 @@ struct Engine {
         }
       s += ", make-room " + std::to_string(mr) + " won " + std::to_string(mrw) + " fail";
       for (int k = 1; k < m3d::kFailReasons; ++k) s += " " + std::to_string(mrf[k]);
+    }
+    for (int kd = 0; kd < 3; ++kd) {
+      long long nf[m3d::kFailReasons] = {};
+      for (std::size_t j = 0; j < f.size(); ++j)
+        if (c[j].kind == kd) ++nf[f[j] >= 0 && f[j] < m3d::kFailReasons ? f[j] : 0];
+      s += kd == 0 ? ", segment fails" : (kd == 1 ? ", facet fails" : ", free fails");
+      for (int k = 1; k < m3d::kFailReasons; ++k) s += " " + std::to_string(nf[k]);
     }
     s += ", seg/facet/free candidates " + std::to_string(kinds[0]) + "/" + std::to_string(kinds[1]) +
          "/" + std::to_string(kinds[2]) + " won " + std::to_string(wins[0]) + "/" +

@@ -24,6 +24,7 @@ namespace {
 using namespace gdr;
 using cdt3d::check_surface;
 using cdt3d::initial_cdt;
+using cdt3d::interior_seeds;
 using cdt3d::Plc;
 using test::add_box;
 using test::unit_cube;
@@ -91,8 +92,8 @@ Surface plc_surface(const Plc& plc) {
 
 // initial_cdt with every check: links, positive tets, volume, validators (`validate`: off
 // where the domain's boundary is not a manifold, which validate_tetmesh does not accept).
-m3d::HostTetMesh checked_cdt(const Plc& plc, bool validate = true) {
-  m3d::HostTetMesh m = initial_cdt(plc);
+m3d::HostTetMesh checked_cdt(const Plc& plc, bool validate = true, const std::vector<double>& seeds = {}) {
+  m3d::HostTetMesh m = initial_cdt(plc, {}, seeds);
   EXPECT_NO_THROW(m3d::check_host_mesh(m));
   for (int t = 0; t < m.tets(); ++t) EXPECT_GT(tet_volume(m, t), 0) << "tet " << t;
   EXPECT_NEAR(mesh_volume(m), plc.volume, 1e-12 * std::max(1.0, std::fabs(plc.volume)));
@@ -371,6 +372,108 @@ TEST(InitialCdt, NestedCubesLeaveTheCavityEmpty) {
   const m3d::HostTetMesh m = checked_cdt(check_surface(s));
   EXPECT_NEAR(mesh_volume(m), 0.875, 1e-14);
   EXPECT_EQ(m.subfaces(), 24);
+}
+
+// Interior seeds join the CDT as free points where they lie in the domain; those in the
+// cavity of nested cubes and outside are dropped.
+TEST(InitialCdt, SeedsInTheDomainBecomeFreePoints) {
+  Surface s = unit_cube();
+  add_box(s, {0.25, 0.25, 0.25}, {0.75, 0.75, 0.75});
+  const std::vector<double> seeds = {0.1, 0.1, 0.1,   0.9, 0.5, 0.2,  // in the domain
+                                     0.5, 0.5, 0.5,                   // in the cavity
+                                     2.0, 0.5, 0.5,   -1, -1, -1};    // outside
+  const m3d::HostTetMesh m = checked_cdt(check_surface(s), true, seeds);
+  EXPECT_NEAR(mesh_volume(m), 0.875, 1e-14);
+  ASSERT_EQ(m.points(), 16 + 2);
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_EQ(m.ptype[16 + k], m3d::kFreePoint);
+    for (int d = 0; d < 3; ++d) EXPECT_EQ(m.xyz[3 * (16 + k) + d], seeds[3 * k + d]);
+  }
+}
+
+// The seeds of a finely triangulated sphere keep half a lattice spacing from every triangle
+// and thin out with depth, as a quality mesh does; the CDT with them is valid.
+TEST(InteriorSeeds, KeepAwayFromTheSurfaceAndGrade) {
+  const Surface s = test::icosphere(5);  // 20,480 triangles
+  const Plc plc = check_surface(s);
+  constexpr double kFactor = 4;
+  const std::vector<double> seeds = interior_seeds(plc, kFactor);
+  ASSERT_GE(seeds.size(), 3u * 20);
+  double edges = 0;
+  for (const auto& t : plc.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const Point3 &a = plc.points[t[k]], &b = plc.points[t[(k + 1) % 3]];
+      edges += std::sqrt((a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y) + (a.z - b.z) * (a.z - b.z));
+    }
+  const double h = kFactor * edges / (3.0 * plc.triangles.size());
+  const std::size_t n = seeds.size() / 3;
+  std::vector<double> depth(n), gap(n, HUGE_VAL);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double* p = &seeds[3 * i];
+    depth[i] = 1 - std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+    // Inside, and h/2 from the triangles, which lie within 2e-3 of the unit sphere.
+    EXPECT_GT(depth[i], h / 2 - 2e-3) << "seed " << i;
+    for (std::size_t j = 0; j < n; ++j)
+      if (j != i) {
+        const double* q = &seeds[3 * j];
+        gap[i] = std::min(gap[i], std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+                                            (p[2] - q[2]) * (p[2] - q[2])));
+      }
+  }
+  double shallow = 0, deep = 0;
+  int ns = 0, nd = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (depth[i] > 0 && depth[i] < 2 * h) shallow += gap[i], ++ns;
+    if (depth[i] > 4 * h) deep += gap[i], ++nd;
+  }
+  ASSERT_GT(ns, 0);
+  ASSERT_GT(nd, 0);
+  EXPECT_GE(deep / nd, 2 * shallow / ns);  // spacing h next to the surface, 4h and more deep inside
+  const m3d::HostTetMesh m = checked_cdt(plc, true, seeds);
+  int free_points = 0;
+  for (int v = 0; v < m.points(); ++v) free_points += m.ptype[v] == m3d::kFreePoint;
+  EXPECT_GT(free_points, 0);
+  EXPECT_LE(free_points, static_cast<int>(n));
+}
+
+// A box whose faces lie on the lattice's bounding box (axis-aligned input) gets seeds too,
+// all inside: the outside is found from a layer of cells beyond the box, not from its faces.
+TEST(InteriorSeeds, AxisAlignedBoxWithFineFaces) {
+  Surface s;
+  constexpr int n = 24;  // a 24 x 24 grid of squares on each face of [0, 1]^3
+  std::map<std::array<int, 3>, int> id;
+  auto point = [&](std::array<int, 3> g) {
+    auto it = id.find(g);
+    if (it != id.end()) return it->second;
+    s.points.push_back({g[0] / double(n), g[1] / double(n), g[2] / double(n)});
+    return id[g] = static_cast<int>(s.points.size()) - 1;
+  };
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side = 0; side < 2; ++side)
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+          auto g = [&](int a, int b) {
+            std::array<int, 3> q;
+            q[axis] = side * n;
+            q[(axis + 1) % 3] = a;
+            q[(axis + 2) % 3] = b;
+            return point(q);
+          };
+          const int p00 = g(i, j), p10 = g(i + 1, j), p11 = g(i + 1, j + 1), p01 = g(i, j + 1);
+          if (side) {
+            s.triangles.push_back({p00, p10, p11});
+            s.triangles.push_back({p00, p11, p01});
+          } else {
+            s.triangles.push_back({p00, p11, p10});
+            s.triangles.push_back({p00, p01, p11});
+          }
+        }
+  const Plc plc = check_surface(s);
+  const std::vector<double> seeds = interior_seeds(plc, 3);
+  ASSERT_GE(seeds.size(), 3u * 8);
+  for (std::size_t i = 0; i < seeds.size(); ++i)
+    EXPECT_TRUE(seeds[i] > 1.4 / n && seeds[i] < 1 - 1.4 / n) << seeds[i];  // h/2 = 1.5 / n
+  checked_cdt(plc, true, seeds);
 }
 
 TEST(InitialCdt, TwoDisjointCubes) {
