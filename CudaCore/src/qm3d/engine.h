@@ -112,6 +112,7 @@ struct Engine {
   // counters: [0] broken link found while remeshing, [1] tetrahedra killed, [2] subfaces killed
   enum { kError = 0, kKilledTets = 1, kKilledSubs = 2, kCounters = 3 };
   static constexpr int kClaimRounds = 8;  // claim rounds per iteration (grow_cavities)
+  static constexpr double kFloor = 64;    // competitors at least (crowding)
   m3d::StallDetector stall;
   u64 keep_below = 0;                     // priority ids below this compete this iteration
   double crowd_share = 1.0;               // share of the competitors kept by crowding
@@ -283,8 +284,12 @@ struct Engine {
   // When far more elements are bad than can win at once (the first iterations), only a
   // random share of them competes, at most a quarter of the tetrahedron count: the others
   // are not even located (the walks to far circumcentres are most of this phase then).
+  // About kFloor of them always compete: a share left small by crowding, once only a few
+  // elements are left, would otherwise let none compete, and the run stalled (H100: spot at
+  // B = 2 stopped with one tetrahedron of 8% of the volume unsplit).
   void compute_splitting_points(std::size_t nl, int iter) {
-    const double share = crowd_share * std::min(1.0, (dm.ntet / 4.0 + 4096.0) / static_cast<double>(nl));
+    const double n = static_cast<double>(nl);
+    const double share = std::max(crowd_share * std::min(1.0, (dm.ntet / 4.0 + 4096.0) / n), std::min(1.0, kFloor / n));
     keep_below = static_cast<u64>(share * 4294967296.0);
     cand_all.resize_discard(nl);
     Ops::for_each(nl, ComputeSplittingPoints{dm.view(), params.criteria, list.data(), cand_all.data(),
@@ -310,7 +315,7 @@ struct Engine {
       lost[j] = f[j] == m3d::kFailLost || f[j] == m3d::kFailTouch;
     });
     const double contenders = static_cast<double>(won + Ops::exclusive_scan(lost, lost, ns));
-    constexpr double kCrowd = 2, kFloor = 64, kMinShare = 1.0 / 4096;
+    constexpr double kCrowd = 2, kMinShare = 1.0 / 4096;
     const double target = kCrowd * static_cast<double>(won) + kFloor;
     crowd_share = std::clamp(crowd_share * target / std::max(contenders, 1.0), kMinShare, 1.0);
   }
