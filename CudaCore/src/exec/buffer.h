@@ -65,6 +65,11 @@ class Buffer {
     smaller.size_ = n;
     swap(smaller);
   }
+  // Scratch that held far more than its last use: freed (contents lost), so that a large
+  // early use does not stay allocated while the mesh grows.
+  void release_if_oversized() {
+    if (capacity_ > 2 * size_ + (std::size_t(1) << 16)) release();
+  }
   void release() {
     if (data_) Ops<Space>::deallocate(data_, capacity_ * sizeof(T));
     data_ = nullptr;

@@ -183,6 +183,11 @@ struct Engine {
         m3d::check_host_mesh(dm.to_host(host.input_points));
       }
       if (res.cap_reached) break;
+      // The first iterations' cavities are the largest: their scratch would stay allocated
+      // while the mesh grows to its final size (peak device memory per tetrahedron).
+      for (auto* b : {&list, &failed, &point_id, &count, &count2}) b->release_if_oversized();
+      cand.release_if_oversized();
+      tuples.release_if_oversized();
     }
     if (params.sliver_sin > 0) {
       clock.restart();
