@@ -544,6 +544,7 @@ void vtkGDRConversion::AddStats(const gdr::QualityTetStats& stats, vtkFieldData*
     fd, "DuplicateTrianglesMerged", static_cast<vtkIdType>(stats.duplicate_triangles_merged));
   AddValue<vtkIdTypeArray>(
     fd, "CDTSteinerPoints", static_cast<vtkIdType>(stats.cdt_steiner_points));
+  AddValue<vtkIdTypeArray>(fd, "InteriorSeeds", static_cast<vtkIdType>(stats.interior_seeds));
   AddValue<vtkIdTypeArray>(fd, "BadTetrahedra", static_cast<vtkIdType>(stats.bad_tets));
   AddValue<vtkIdTypeArray>(
     fd, "ProtectedBadTetrahedra", static_cast<vtkIdType>(stats.protected_bad_tets));

@@ -256,6 +256,18 @@ void CheckOutputs(vtkGPUQualityTetMesh* filter)
     phases->GetNumberOfValues() == fd->GetArray("PhaseSeconds")->GetNumberOfTuples());
   CHECK(FieldValue(out, "BadTetrahedra") == double(nbad));
   CHECK(FieldValue(out, "SteinerPoints") <= out->GetNumberOfPoints());
+  // Interior seeds are free points (PointType 2) put in with the CDT.
+  CHECK(FieldValue(out, "InteriorSeeds") + FieldValue(out, "CDTSteinerPoints") <=
+    FieldValue(out, "SteinerPoints"));
+  if (vtkDataArray* type = out->GetPointData()->GetArray("PointType"))
+  {
+    vtkIdType free = 0;
+    for (vtkIdType i = 0; i < type->GetNumberOfTuples(); ++i)
+    {
+      free += type->GetComponent(i, 0) == 2;
+    }
+    CHECK(free >= FieldValue(out, "InteriorSeeds"));
+  }
   CHECK(FieldValue(out, "TotalSeconds") >= 0);
   const double total = Sum(volume);
   CHECK(std::fabs(FieldValue(out, "Volume") - total) <= 1e-9 * total);
