@@ -494,6 +494,8 @@ struct Engine {
     const int new_subs = static_cast<int>(Ops::exclusive_scan(count2.data(), count2.data(), nt));
     const int old_ntet = dm.ntet, old_nsub = dm.nsub, old_npts = dm.npts;
     Ops::for_each(nt, m3d::StoreSlotBase{dm.view(), tp, fl, count.data(), count2.data(), old_ntet, old_nsub});
+    count.release();  // one int per tuple each: not held while the mesh arrays grow
+    count2.release();
     dm.reserve(old_ntet + new_tets, old_nsub + new_subs, old_npts + static_cast<int>(won));
     dm.ntet = old_ntet + new_tets;
     dm.nsub = old_nsub + new_subs;
