@@ -6,10 +6,10 @@
 // tetrahedra then have cavities of thousands of tetrahedra that all overlap, so few go in
 // per iteration, and those near the surface are refused for encroaching it, so that on
 // scanned surfaces refinement stopped with a third of the volume bad (penguin_hr, boat:
-// 2026-11-24). Seeds half a spacing or more from the surface encroach nothing there. They
-// go into TetGen's Delaunay tetrahedralization with the surface points, before boundary
-// recovery: inserted one by one by the refinement engine instead, their cavities (the
-// whole interior) overlap, a few go in per iteration, and many fail next to the surface.
+// 2026-11-24). Seeds half a spacing or more from the surface rarely encroach on it. They go
+// into TetGen's Delaunay tetrahedralization with the surface points, before boundary
+// recovery: inserted by the refinement engine instead (tried), their cavities (the whole
+// interior) overlapped, a few went in per iteration, and many failed next to the surface.
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
