@@ -270,7 +270,9 @@ TEST_P(Refine2d, NearlyCocircularPoints) {
   o.off_centers = false;
   const auto r = mesh(g, o);
   EXPECT_EQ(r.stats.bad_triangles, 0);
-  EXPECT_LE(r.stats.iterations, 45);  // 54 before the fix, about 34 with it
+  // 54 before the fix; 40-44 with it on 2 CPU threads (2026-11-24, idle or loaded), and 46
+  // once in a CI run under load: thread timing decides which of two touching points waits.
+  EXPECT_LE(r.stats.iterations, 50);
   g.points = regular_polygon(2000, 1.0);
   const auto circumcentres = mesh(g, o);
   const auto off = mesh(g, options());
