@@ -570,6 +570,8 @@ void vtkGDRConversion::AddStats(const gdr::RestrictedDelaunayStats& stats, vtkFi
   AddValue<vtkIdTypeArray>(fd, "FeaturePoints", static_cast<vtkIdType>(stats.feature_points));
   AddValue<vtkIdTypeArray>(fd, "BadFacets", static_cast<vtkIdType>(stats.bad_facets));
   AddValue<vtkIdTypeArray>(fd, "BadTetrahedra", static_cast<vtkIdType>(stats.bad_tets));
+  AddValue<vtkIdTypeArray>(fd, "ManifoldSplits", static_cast<vtkIdType>(stats.manifold_splits));
+  AddValue<vtkIdTypeArray>(fd, "NonManifoldFacets", static_cast<vtkIdType>(stats.non_manifold_facets));
   AddValue<vtkDoubleArray>(fd, "FacetAngle", stats.facet_angle);
   AddValue<vtkDoubleArray>(fd, "FacetSize", stats.facet_size);
   AddValue<vtkDoubleArray>(fd, "FacetDistance", stats.facet_distance);

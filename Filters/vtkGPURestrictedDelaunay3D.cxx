@@ -91,6 +91,7 @@ int vtkGPURestrictedDelaunay3D::RequestData(vtkInformation* vtkNotUsed(request),
   options.cell_size = this->CellSize;
   options.mesh_volume = this->MeshVolume != 0;
   options.feature_angle = this->FeatureAngle;
+  options.manifold = this->Manifold != 0;
   options.sliver_angle = this->SliverAngle;
   options.max_steiner_points = static_cast<long long>(this->MaximumSteinerPoints);
   if (!run.SelectBackend(this->Backend, options.backend))
@@ -154,6 +155,7 @@ void vtkGPURestrictedDelaunay3D::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CellSize: " << this->CellSize << "\n";
   os << indent << "MeshVolume: " << this->MeshVolume << "\n";
   os << indent << "FeatureAngle: " << this->FeatureAngle << "\n";
+  os << indent << "Manifold: " << this->Manifold << "\n";
   os << indent << "SliverAngle: " << this->SliverAngle << "\n";
   os << indent << "MaximumSteinerPoints: " << this->MaximumSteinerPoints << "\n";
   os << indent << "Backend: "

@@ -26,7 +26,8 @@
  * 3 on the surface, 2 inside). MinDihedralAngle is the active scalar, as in
  * vtkGPUQualityTetMesh. Field data, also when the tetrahedra are empty: the run's
  * statistics (Backend, DeviceName, Iterations, SteinerPoints, ClosedInput, VolumeMeshed,
- * FeatureEdges, Corners, FeaturePoints, BadFacets, BadTetrahedra, Stalled,
+ * FeatureEdges, Corners, FeaturePoints, BadFacets, BadTetrahedra, ManifoldSplits,
+ * NonManifoldFacets, Stalled,
  * SteinerCapReached, the criteria in effect with automatic sizes resolved as FacetAngle,
  * FacetSize, FacetDistance, CellRadiusEdgeRatio, CellSize, FeatureAngle, SliversBefore and
  * SliversAfter (SliverAngle), the qualities reached, Area, Volume, the times and the per-phase times as PhaseNames / PhaseSeconds).
@@ -139,6 +140,20 @@ public:
 
   ///@{
   /**
+   * Refine where the surface is not a 2-manifold (default on), as CGAL Mesh_3's manifold():
+   * once the criteria are met, the triangles at edges and vertices where the surface pinches
+   * (a part thinner than the triangles) are refined until it is a manifold, down to
+   * triangles of D/1000 or an eighth of FacetSize; the field data NonManifoldFacets counts
+   * what is left there (with a warning), ManifoldSplits the triangles refined. Off: CGAL's
+   * non_manifold().
+   */
+  vtkSetMacro(Manifold, vtkTypeBool);
+  vtkGetMacro(Manifold, vtkTypeBool);
+  vtkBooleanMacro(Manifold, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
    * Sliver removal after refinement, in degrees in [0, 30] (default 0: off), as
    * vtkGPUQualityTetMesh's SliverAngle: interior points of tetrahedra with a dihedral angle
    * below it (or above 180 minus it) move to raise the smallest dihedral angle around them,
@@ -189,6 +204,7 @@ protected:
   double CellSize = -1.0;
   vtkTypeBool MeshVolume = 1;
   double FeatureAngle = 0.0;
+  vtkTypeBool Manifold = 1;
   double SliverAngle = 0.0;
   vtkIdType MaximumSteinerPoints = -1;
   int Backend = AUTO;

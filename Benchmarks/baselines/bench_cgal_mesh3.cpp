@@ -16,8 +16,9 @@ void usage() {
   std::cerr
       << "usage: bench_cgal_mesh3 SURFACE.(off|stl) [--parallel] [--threads N]\n"
          "         [--facet-angle DEG] [--facet-size S] [--facet-distance D]\n"
-         "         [--cell-radius-edge-ratio B] [--cell-size S] [--no-optimize]\n"
-         "  a bound of 0 is no bound; --no-optimize skips CGAL's perturbation and exudation\n";
+         "         [--cell-radius-edge-ratio B] [--cell-size S] [--no-optimize] [--manifold]\n"
+         "  a bound of 0 is no bound; --no-optimize skips CGAL's perturbation and exudation;\n"
+         "  --manifold refines until the surface is a manifold (CGAL's manifold())\n";
 }
 
 }  // namespace
@@ -31,6 +32,7 @@ int main(int argc, char** argv) {
     const bool has_value = i + 1 < argc;
     if (a == "--parallel") parallel = true;
     else if (a == "--no-optimize") p.optimize = false;
+    else if (a == "--manifold") p.manifold = true;
     else if (a == "--threads" && has_value) p.threads = std::atoi(argv[++i]);
     else if (a == "--facet-angle" && has_value) p.facet_angle = std::atof(argv[++i]);
     else if (a == "--facet-size" && has_value) p.facet_size = std::atof(argv[++i]);

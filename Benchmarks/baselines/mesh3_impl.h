@@ -54,9 +54,10 @@ Mesh3Result run_mesh3(const gdr::Surface& surface, const Mesh3Params& p) {
                     params::cell_size = p.cell_size);
 
   const auto t1 = Clock::now();
-  C3t3 c3t3 = p.optimize ? CGAL::make_mesh_3<C3t3>(domain, criteria)
+  const auto topology = p.manifold ? params::manifold() : params::non_manifold();
+  C3t3 c3t3 = p.optimize ? CGAL::make_mesh_3<C3t3>(domain, criteria, topology)
                          : CGAL::make_mesh_3<C3t3>(domain, criteria, params::no_perturb(),
-                                                   params::no_exude());
+                                                   params::no_exude(), topology);
   r.mesh_seconds = std::chrono::duration<double>(Clock::now() - t1).count();
 
   TetQuality q;

@@ -12,6 +12,7 @@ struct Mesh3Params {
   double facet_angle = 25, facet_size = 0, facet_distance = 0;
   double cell_radius_edge_ratio = 3, cell_size = 0;
   bool optimize = true;  // CGAL's default perturbation and exudation after refinement
+  bool manifold = false;  // CGAL's manifold() topological criterion (gdr rdt's default)
   int threads = 0;       // parallel only; 0 = all cores
 };
 

@@ -69,6 +69,12 @@ Criteria (CGAL Mesh_3's names; sizes default to fractions of the bounding box di
                            triangles and tetrahedra that cannot meet the criteria are left
                            and counted as bad
   --surface-only           mesh the surface only, even when it is closed
+  --no-manifold            do not refine where the surface is not a 2-manifold (CGAL's
+                           non_manifold()). By default, once the criteria are met, the
+                           triangles at edges and vertices where the surface pinches (a
+                           part thinner than the triangles) are refined until it is a
+                           manifold, down to triangles of D/1000 or 1/8 of the facet size;
+                           what is left is counted and warned about
   --max-steiner N          stop cleanly after inserting N points (default: no cap where
                            refinement terminates; an automatic cap below --cell-radius-edge 2)
 Algorithm:
@@ -135,6 +141,7 @@ ArgsRdt parse_rdt(const std::vector<std::string>& args) {
       number("feature-angle", a.options.feature_angle),
       number("sliver-angle", a.options.sliver_angle),
       {"surface-only", 0, false, [&](const std::string&) { a.options.mesh_volume = false; }},
+      {"no-manifold", 0, false, [&](const std::string&) { a.options.manifold = false; }},
       {"max-steiner", 0, true,
        [&](const std::string& v) {
          a.options.max_steiner_points = parse_integer(cmd, "max-steiner", v);
@@ -290,6 +297,10 @@ void print_summary(const ArgsRdt& a, const RestrictedDelaunayResult& r, const Re
                               " output points on them"});
   if (s.steiner_cap_reached) info.row({"", "stopped at the cap of " + with_commas(s.steiner_cap)});
   if (s.stalled) info.row({"", "stalled: bad elements remain that no point could fix"});
+  if (s.manifold_splits > 0 || s.non_manifold_facets > 0)
+    info.row({"manifold", with_commas(s.manifold_splits) + " triangles refined where the surface pinched; " +
+                              (s.non_manifold_facets > 0 ? with_commas(s.non_manifold_facets) + " still at non-manifold places"
+                                                         : std::string("now a manifold"))});
   info.row({"backend", backend_line(s.backend_used, s.device_name)});
   info.row({"surface", "min angle " + fixed(s.min_facet_angle_deg, 2) + " deg, max size " +
                            fixed(s.max_facet_size, 6) + ", max distance " + fixed(s.max_facet_distance, 6) +
@@ -388,6 +399,9 @@ void write_stats_json(const ArgsRdt& a, const RestrictedDelaunayResult& r, const
   j.field("steiner_cap", s.steiner_cap);
   j.field("steiner_cap_reached", s.steiner_cap_reached);
   j.field("stalled", s.stalled);
+  j.field("manifold_splits", s.manifold_splits);
+  j.field("non_manifold_facets", s.non_manifold_facets);
+  j.field("manifold_min_size", s.manifold_min_size);
   j.field("min_facet_angle_deg", s.min_facet_angle_deg);
   j.field("max_facet_size", s.max_facet_size);
   j.field("max_facet_distance", s.max_facet_distance);

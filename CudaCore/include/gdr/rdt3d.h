@@ -3,10 +3,11 @@
 //
 // The output approximates the input surface rather than keeping it: surface vertices lie on
 // it (up to rounding), surface triangles are the restricted facets (Delaunay faces whose
-// Voronoi dual meets the input), tetrahedra are those whose circumcentre lies inside it. With
-// tetrahedra, the surface is their boundary: a restricted facet between two tetrahedra on the
-// same side (its dual touches the input without crossing it, or crosses it twice) bounds
-// nothing and is left out, with a warning.
+// Voronoi dual meets the input), tetrahedra are those whose circumcentre lies inside it. For
+// a closed input, with tetrahedra or without, the surface is the boundary of the tetrahedra
+// inside: a restricted facet between two tetrahedra on the same side (its dual touches the
+// input without crossing it, or crosses it twice) bounds nothing and is left out, with a
+// warning.
 //
 // Sharp features (optional: FeatureAngle, or the input's segments) are kept: feature edges
 // are sampled first and protected as constrained segments are in Ruppert's refinement (a
@@ -41,6 +42,12 @@ struct RestrictedDelaunayOptions {
   // more than this are sharp features, and so are the boundary edges of an open surface; 0
   // (the default) detects none. The input's segments are features in any case.
   double feature_angle = 0.0;
+  // Manifold (CGAL Mesh_3's manifold()): once every facet and cell meets the criteria, the
+  // facets at edges and vertices where the surface is not a 2-manifold (a thin part pinched,
+  // an edge with one or three facets) are refined until it is one (for an open input: a
+  // manifold with boundary), down to facets of D / 1000 or an eighth of the facet size;
+  // what is left there is reported (non_manifold_facets). false: CGAL's non_manifold().
+  bool manifold = true;
   // Refinement stops cleanly at this many Steiner points. -1 (automatic): a cap applies only
   // where termination is not guaranteed (radius-edge ratio below 2).
   long long max_steiner_points = -1;
@@ -70,6 +77,9 @@ struct RestrictedDelaunayStats {
   long long triangulation_points = 0, triangulation_tets = 0;  // the whole Delaunay triangulation
   long long output_points = 0, output_tets = 0, output_triangles = 0;
   long long bad_facets = 0, bad_tets = 0;  // left above the bounds (stall or cap)
+  long long manifold_splits = 0;           // facets refined by the manifold criterion
+  long long non_manifold_facets = 0;       // surface facets at a non-manifold edge or vertex, at the end
+  double manifold_min_size = 0;            // the manifold criterion refines facets down to this
   long long steiner_cap = -1;
   bool steiner_cap_reached = false;
   bool stalled = false;

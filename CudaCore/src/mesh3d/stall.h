@@ -31,6 +31,13 @@ class StallDetector {
     return !shrinking || unchanged;
   }
 
+  // A new kind of work begins (gDP3d's manifold rounds): the backlog jumps, not a stall.
+  void restart() {
+    backlog_.clear();
+    points_.clear();
+    volume_.clear();
+  }
+
  private:
   static constexpr std::size_t kWindow = 40, kSame = 6;
   std::vector<std::size_t> backlog_;

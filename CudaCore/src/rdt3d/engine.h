@@ -27,6 +27,7 @@ struct EngineParams {
   // kernels.h InteriorCells): stars with a dihedral angle whose sine is below this are
   // smoothed; 0: none.
   double sliver_sin = 0;
+  bool manifold = true;  // refine where the surface is not a manifold (Criteria::manifold)
 };
 
 struct EngineResult {
@@ -34,6 +35,8 @@ struct EngineResult {
   long long inserted = 0;
   bool cap_reached = false;
   bool stalled = false;
+  long long manifold_splits = 0;  // facets split by the manifold criterion
+  long long non_manifold = 0;     // surface facets at a non-manifold edge or vertex at the end
   m3d::SmoothResult slivers;
   std::size_t peak_bytes = 0;
   std::vector<PhaseTime> phases;
@@ -77,11 +80,16 @@ struct Engine {
   EngineResult res;
   Buf<double> sxyz, sbox;
   Buf<int> stri, sorder, skids;
+  Buf<int> deg, counts;  // the manifold criterion's facets per vertex and tallies
   AabbView tree{};
   bool stagnant = false;
   bool features = false;  // the mesh has feature subsegments
   const bool trace = std::getenv("GDR_TRACE") != nullptr;
   m3d::StallDetector stall;
+  // Each round refines the facets where the surface pinches; they shrink to the criterion's
+  // floor (Criteria::manifold_min2), so the rounds end. The bound is a guard.
+  static constexpr int kManifoldRounds = 200;
+  int manifold_rounds = 0;
 
   Engine(const EngineParams& p, const Callbacks& c) : params(p), cb(c), core(p.insertion, c) {}
 
@@ -107,7 +115,13 @@ struct Engine {
     for (int iter = 0; iter < params.insertion.max_iterations; ++iter) {
       if (cb.abort && cb.abort()) throw Error(Status::Aborted, "refinement aborted by the caller");
       core.clock.restart();
-      const std::size_t nl = collect();  // line 4: bad facets and bad tetrahedra, one list
+      std::size_t nl = collect();  // line 4: bad facets and bad tetrahedra, one list
+      // The manifold criterion, once every facet and cell meets the others (as CGAL's).
+      if (nl == 0 && params.manifold && manifold_rounds < kManifoldRounds && non_manifold(true) > 0) {
+        ++manifold_rounds;
+        stall.restart();
+        nl = collect();
+      }
       if (nl == 0) break;
       res.iterations = iter + 1;
       compute_splitting_points(nl, iter);     // line 5
@@ -146,6 +160,7 @@ struct Engine {
     }
     res.inserted = core.res.inserted;
     res.cap_reached = core.res.cap_reached;
+    res.non_manifold = non_manifold(false);
     if (params.sliver_sin > 0 && params.criteria.volume) {
       if (cb.abort && cb.abort()) throw Error(Status::Aborted, "refinement aborted by the caller");
       core.clock.restart();
@@ -169,6 +184,29 @@ struct Engine {
     Ops::for_each(core.dm.ntet, ClassifyFresh{mv, tree, params.criteria});
     Ops::for_each(core.dm.ntet, ClearFresh{mv});
     core.clock.template stop<Space>("classify");
+  }
+
+  // The manifold criterion: the facets at non-manifold edges and vertices of the surface are
+  // marked for splitting (mark) or counted. Returns how many were marked, or counted.
+  long long non_manifold(bool mark) {
+    auto& dm = core.dm;
+    deg.resize_discard(dm.npts);
+    deg.zero();
+    counts.resize_discard(2);
+    counts.zero();
+    const m3d::TetView mv = dm.view();
+    Ops::for_each(dm.ntet, CountSurfaceFacets{mv, params.criteria, deg.data()});
+    Ops::for_each(dm.ntet, MarkNonManifold{mv, params.criteria, deg.data(), counts.data(), mark});
+    int n[2];
+    counts.download(n, 2);
+    deg.release();
+    core.clock.template stop<Space>("manifold");
+    if (trace)
+      std::fprintf(stderr, "gdr-trace rdt manifold: %d facets at non-manifold edges or vertices, %d marked\n", n[0],
+                   n[1]);
+    if (!mark) return n[0];
+    res.manifold_splits += n[1];
+    return n[1];
   }
 
   std::size_t collect() {

@@ -27,11 +27,21 @@ struct Criteria {
   double facet_distance2 = 0;   // FacetDistance^2: facet circumcentre to surface centre
   double radius_edge2 = 0;      // CellRadiusEdgeRatio^2
   double cell_size2 = 0;        // CellSize^2: circumradius
-  int volume = 1;               // 1: classify and refine tetrahedra inside the surface
+  int inside = 1;               // 1: the input is closed: tetrahedra are classified inside or out
+  int volume = 1;               // 1: and those inside refined (else the surface only)
   double reach = 0;             // longer than any segment from inside the box out of it
   double feature_min2 = 0;      // feature subsegments shorter than this (squared) are not split
   int step_limit = 1 << 20;     // point-location walk bound
+  // What the surface should be (kManifold for a closed input; kManifoldBoundary: an open
+  // input's boundary edges and fans are allowed), for the manifold criterion (CGAL Mesh_3's
+  // manifold(), EngineParams::manifold) and the count of places where it is not. The
+  // criterion leaves facets whose longest edge is below manifold_min (squared): thin parts
+  // below it stay pinched, and are reported.
+  int manifold = 1;
+  double manifold_min2 = 0;
 };
+
+enum : int { kManifold = 1, kManifoldBoundary = 2 };
 
 // Tetrahedron flag bits of this mesher. It has no subfaces, and runs its own collect phase, so
 // it keeps its per-tetrahedron state in the bits gQM3d uses for its collect mask
@@ -104,10 +114,10 @@ GDR_HD_INLINE bool owns_face(const TetView& m, int t, int f) {
 // (beyond the hull: outside)? A restricted facet should separate the inside from the outside,
 // but the two tests differ where its dual only touches the surface (a circumcentre exactly on
 // a plane of the input: CAD parts with dyadic coordinates give it) or crosses it twice (clips
-// a sharp edge or a thin part): such a facet bounds nothing (issue 12). False without a
-// volume (no tetrahedron is inside then).
+// a sharp edge or a thin part): such a facet bounds nothing (issue 12). False for an open
+// input (no tetrahedron is inside then).
 GDR_HD_INLINE bool same_side(const TetView& m, const Criteria& c, int t, int f) {
-  if (!c.volume) return false;
+  if (!c.inside) return false;
   const int nb = m.tn[4 * t + f];
   const bool in_t = (m.tflag[t] & kInterior) != 0;
   const bool in_u = nb >= 0 && (m.tflag[nb >> 2] & kInterior) != 0;
@@ -339,7 +349,7 @@ struct ClassifyFresh {
       }
     }
     bool inside = false;
-    if (c.volume) {
+    if (c.inside) {
       double o[3];
       inside = tet_center(m, t, o) && inside_surface(s, o, c.reach);
     }
@@ -479,6 +489,163 @@ struct ComputeSplittingPoints {
     cand.origin = surface ? -1 : t;
     cand.kind = m3d::kFreeSplit;
     cand.ek = m3d::kDelaunayPoint;
+  }
+};
+
+// ---------------------------------------------------------------------------------------
+// The manifold criterion. The surface is the output's: restricted facets that separate the
+// inside from the outside (same_side). An edge of it must have two facets (one on an open
+// input's boundary), and the facets at a vertex must form one cycle (one fan on the
+// boundary). Both are read off the triangulation by turning around edges, without lists.
+
+GDR_HD_INLINE bool surface_facet(const TetView& m, const Criteria& c, int t, int f) {
+  return (m.tflag[t] & (kRestricted0 << f)) && !same_side(m, c, t, f);
+}
+
+// The face as its owner lists it (4t + f), the same from either side.
+GDR_HD_INLINE int face_id(const TetView& m, int t, int f) {
+  return owns_face(m, t, f) ? 4 * t + f : m.tn[4 * t + f];
+}
+
+// Turns around edge xy from face f of t (which holds it): visit(u, g) sees each face g that
+// holds xy of the tetrahedra u beyond f, in order, ending with f itself (seen from the other
+// side) when the ring is closed. Returns 1 if visit stopped it, 0 all the way round, -1 at
+// the hull, -2 on a broken ring.
+template <class Visit>
+GDR_HD_INLINE int turn_around_edge(const TetView& m, int t, int f, int x, int y, Visit visit) {
+  const int t0 = t;
+  for (int guard = 0; guard < 1000; ++guard) {
+    const int g = m3d::other_face_at_edge(m, t, f, x, y);
+    if (g < 0) return -2;
+    if (visit(t, g)) return 1;
+    const int nb = m.tn[4 * t + g];
+    if (nb < 0) return -1;
+    t = nb >> 2;
+    f = nb & 3;
+    if (t == t0) return 0;
+  }
+  return -2;
+}
+
+// Surface facets at edge xy of surface facet f of t (f included); -1 on a broken ring.
+GDR_HD_INLINE int facets_at_edge(const TetView& m, const Criteria& c, int t, int f, int x, int y) {
+  int n = 0;
+  auto count = [&](int u, int g) {
+    n += surface_facet(m, c, u, g);
+    return false;
+  };
+  const int r = turn_around_edge(m, t, f, x, y, count);
+  if (r == 0) return n;
+  if (r != -1) return -1;
+  n += 1;  // f itself, which the walk to the hull did not reach
+  const int nb = m.tn[4 * t + f];
+  if (nb >= 0 && turn_around_edge(m, nb >> 2, nb & 3, x, y, count) != -1) return -1;
+  return n;
+}
+
+// The next surface facet round edge xy from surface facet f of t, as (tetrahedron, face);
+// false if there is none but f.
+GDR_HD_INLINE bool next_facet_at_edge(const TetView& m, const Criteria& c, int t, int f, int x, int y, int* u,
+                                      int* g) {
+  auto found = [&](int w, int k) {
+    if (!surface_facet(m, c, w, k)) return false;
+    *u = w;
+    *g = k;
+    return true;
+  };
+  const int self = face_id(m, t, f);
+  int r = turn_around_edge(m, t, f, x, y, found);
+  if (r == -1) {
+    const int nb = m.tn[4 * t + f];
+    r = nb >= 0 ? turn_around_edge(m, nb >> 2, nb & 3, x, y, found) : -1;
+  }
+  return r == 1 && face_id(m, *u, *g) != self;
+}
+
+GDR_HD_INLINE int third_corner(const TetView& m, int t, int f, int x, int y) {
+  for (int q = 0; q < 3; ++q) {
+    const int v = m.tv[4 * t + m3d::face_corner(f, q)];
+    if (v != x && v != y) return v;
+  }
+  return -1;
+}
+
+// Surface facets reached from surface facet f of t by turning round its corner v across
+// edges; -1 if the walk breaks or runs past `limit`.
+GDR_HD_INLINE int umbrella_at(const TetView& m, const Criteria& c, int t, int f, int v, int limit) {
+  const int start = face_id(m, t, f);
+  int ends[2] = {-1, -1};
+  for (int q = 0, k = 0; q < 3; ++q) {
+    const int w = m.tv[4 * t + m3d::face_corner(f, q)];
+    if (w != v) ends[k++] = w;
+  }
+  int n = 1;
+  for (int dir = 0; dir < 2; ++dir) {
+    int u = t, g = f, x = ends[dir];
+    for (;;) {
+      int nu, ng;
+      if (!next_facet_at_edge(m, c, u, g, v, x, &nu, &ng)) break;  // a boundary edge: the other way
+      if (face_id(m, nu, ng) == start) return n;                    // all the way round
+      if (++n > limit) return -1;
+      x = third_corner(m, nu, ng, v, x);
+      u = nu;
+      g = ng;
+    }
+  }
+  return n;
+}
+
+// Surface facets per vertex (deg, zeroed before).
+struct CountSurfaceFacets {
+  TetView m;
+  Criteria c;
+  int* deg;
+  GDR_HD void operator()(long long i) const {
+    const int t = static_cast<int>(i);
+    if (m.tflag[t] & m3d::kDead) return;
+    for (int f = 0; f < 4; ++f)
+      if (owns_face(m, t, f) && surface_facet(m, c, t, f))
+        for (int q = 0; q < 3; ++q) exec::atomic_add(&deg[m.tv[4 * t + m3d::face_corner(f, q)]], 1);
+  }
+};
+
+// A surface facet at a non-manifold edge or vertex is split (kSplitFace0 on its owner), unless
+// its tetrahedra are protected or it is below manifold_min. counts[0]: facets at such places,
+// counts[1]: of those, marked for splitting.
+struct MarkNonManifold {
+  TetView m;
+  Criteria c;
+  const int* deg;
+  int* counts;
+  bool mark;  // false: count only
+  GDR_HD void operator()(long long i) const {
+    const int t = static_cast<int>(i);
+    if (m.tflag[t] & m3d::kDead) return;
+    for (int f = 0; f < 4; ++f) {
+      if (!owns_face(m, t, f) || !surface_facet(m, c, t, f)) continue;
+      int v[3];
+      for (int q = 0; q < 3; ++q) v[q] = m.tv[4 * t + m3d::face_corner(f, q)];
+      bool bad = false;
+      double longest2 = 0;
+      for (int q = 0; q < 3 && !bad; ++q) {
+        const int a = v[q], b = v[(q + 1) % 3];
+        longest2 = fmax(longest2, m3d::dist2(pt(m, a), pt(m, b)));
+        const int n = facets_at_edge(m, c, t, f, a, b);
+        bad = n > 2 || (n == 1 && c.manifold == kManifold);
+      }
+      for (int q = 0; q < 3 && !bad; ++q) {
+        const int n = umbrella_at(m, c, t, f, v[q], deg[v[q]]);
+        bad = n >= 0 && n != deg[v[q]];
+      }
+      if (!bad) continue;
+      exec::atomic_add(&counts[0], 1);
+      const int nb = m.tn[4 * t + f];
+      if (!mark || (m.tflag[t] & m3d::kProtected) || (nb >= 0 && (m.tflag[nb >> 2] & m3d::kProtected)) ||
+          longest2 < c.manifold_min2)
+        continue;
+      exec::atomic_or(&m.tflag[t], m3d::kSplitFace0 << f);
+      exec::atomic_add(&counts[1], 1);
+    }
   }
 };
 

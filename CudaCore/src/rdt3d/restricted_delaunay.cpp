@@ -338,9 +338,15 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
   c.facet_distance2 = facet_distance * facet_distance;
   c.radius_edge2 = options.cell_radius_edge_ratio * options.cell_radius_edge_ratio;
   c.cell_size2 = cell_size * cell_size;
+  // A closed input's surface is the boundary of what lies inside, with a volume or without.
+  c.inside = st.closed_input ? 1 : 0;
   c.volume = st.volume_meshed ? 1 : 0;
   c.reach = 8 * diag;  // beyond the corners' box from anywhere in it
   c.feature_min2 = st.feature_min_length * st.feature_min_length;
+  c.manifold = st.closed_input ? rdt3d::kManifold : rdt3d::kManifoldBoundary;
+  params.manifold = options.manifold;
+  st.manifold_min_size = options.manifold ? std::min(diag / 1000, facet_size > 0 ? facet_size / 8 : diag) : 0.0;
+  c.manifold_min2 = st.manifold_min_size * st.manifold_min_size;
   st.sliver_angle = st.volume_meshed ? options.sliver_angle : 0.0;
   params.sliver_sin = std::sin(st.sliver_angle * kPi / 180.0);
   params.insertion.strategies = qm3d::strategies_from_environment();
@@ -401,12 +407,21 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
   st.stalled = er.stalled;
   st.phases = er.phases;
   st.steiner_points = er.inserted;
+  st.manifold_splits = er.manifold_splits;
+  st.non_manifold_facets = er.non_manifold;
   st.slivers_before = er.slivers.slivers_before;
   st.slivers_after = er.slivers.slivers_after;
   st.sliver_moves = er.slivers.moves;
   if (st.backend_used == Backend::Gpu) st.peak_device_bytes = er.peak_bytes;
   if (er.cap_reached && cb.warning)
     cb.warning("refinement stopped at the Steiner point cap (" + std::to_string(st.steiner_cap) + ")");
+  if (st.non_manifold_facets > 0 && cb.warning)
+    cb.warning("the surface is not a manifold at " + std::to_string(st.non_manifold_facets) + " facet(s)" +
+               (options.manifold ? ": the input is thinner there than facets of " +
+                                       std::to_string(scale.length(st.manifold_min_size, -1)) +
+                                       " (the manifold criterion's smallest) can resolve, or they are next to "
+                                       "features at small angles"
+                                 : std::string(" (the manifold criterion is off)")));
   if (aborted()) throw Error(Status::Aborted, "aborted by the caller");
 
   // The output, read off the final triangulation with the engine's own predicates.
@@ -500,7 +515,7 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
       const bool in_t = (out.tflag[t] & rdt3d::kInterior) != 0;
       const bool in_u = nb >= 0 && (out.tflag[nb >> 2] & rdt3d::kInterior) != 0;
       bool flip;
-      if (st.volume_meshed && in_t != in_u) {
+      if (c.inside && in_t != in_u) {
         flip = !in_t;
       } else {
         // Along the input triangle's normal (outward when the input's volume is positive).
@@ -516,7 +531,7 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
         const double e1[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]},
                      e2[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
         m3d::cross3(e1, e2, w);
-        flip = (m3d::dot3(n, w) < 0) != (st.volume_meshed && signed_volume < 0);
+        flip = (m3d::dot3(n, w) < 0) != (c.inside && signed_volume < 0);
       }
       if (flip) std::swap(v[1], v[2]);
       const Point3 a{out.xyz[3 * v[0]], out.xyz[3 * v[0] + 1], out.xyz[3 * v[0] + 2]};
@@ -621,7 +636,7 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
   st.volume = scale.volume(st.volume, -1);
   st.area = scale.area(st.area, -1);
   for (double* v : {&st.max_facet_size, &st.max_facet_distance, &st.facet_size, &st.facet_distance, &st.cell_size,
-                    &st.feature_min_length})
+                    &st.feature_min_length, &st.manifold_min_size})
     *v = scale.length(*v, -1);
   st.output_points = static_cast<long long>(tm.points.size());
   st.output_tets = static_cast<long long>(tm.tets.size());

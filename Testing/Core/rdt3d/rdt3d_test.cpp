@@ -593,6 +593,32 @@ TEST_P(RestrictedDelaunayOnBackend, ThinWedgeTerminatesWithExceptions) {
   EXPECT_NEAR(r.stats.volume, h * 0.5, 0.05 * h * 0.5);
 }
 
+// A thin part: an ellipsoid 33 times wider than thick (20k triangles) at the default criteria,
+// whose facet size is larger than the thickness. Without the manifold criterion the restricted
+// surface pinches at the rim (about 40 non-manifold edges and vertices on the CPU); with it,
+// the facets there are refined until the surface is a closed 2-manifold bounding the volume,
+// with tetrahedra and without. The count of non-manifold places agrees with the validator.
+TEST_P(RestrictedDelaunayOnBackend, ThinPartIsRefinedToAManifold) {
+  Surface s = test::icosphere(5);
+  for (Point3& p : s.points) p.z *= 0.03;
+  RestrictedDelaunayOptions o;
+  o.backend = GetParam();
+  o.manifold = false;
+  const RestrictedDelaunayResult off = restricted_delaunay_3d(s, o, {});
+  EXPECT_EQ(off.stats.manifold_splits, 0);
+  EXPECT_EQ(off.stats.non_manifold_facets > 0, !validate_surface(off.mesh.points, off.mesh.subfaces, true).valid);
+  for (bool volume : {true, false}) {
+    SCOPED_TRACE(volume ? "volume" : "surface only");
+    o.manifold = true;
+    o.mesh_volume = volume;
+    const RestrictedDelaunayResult r = restricted_delaunay_3d(s, o, {});
+    EXPECT_GT(r.stats.manifold_splits, 0);
+    EXPECT_EQ(r.stats.non_manifold_facets, 0);
+    expect_valid(r, s, true, volume);
+    if (volume) EXPECT_NEAR(r.stats.volume, enclosed_volume(s), 0.05 * enclosed_volume(s));
+  }
+}
+
 // Sliver removal (sliver_angle): interior points move, and only they. The mesh stays valid
 // (positive tetrahedra bounded by the restricted surface, a closed 2-manifold on the input),
 // the surface and the volume stay as they were, every cell still meets the cell criteria, and
