@@ -13,6 +13,7 @@
 #include "gdr/io.h"
 #include "gdr/refine2d.h"
 #include "gdr/validate.h"
+#include "on_backend.h"
 #include "pslg_shapes.h"
 
 namespace {
@@ -37,13 +38,8 @@ std::vector<std::array<int, 3>> canonical(const gdr::TriMesh& m) {
   return t;
 }
 
-class ParallelCdt : public ::testing::TestWithParam<Backend> {
+class ParallelCdt : public gdr::test::OnBackend {
  protected:
-  void SetUp() override {
-    if (GetParam() == Backend::Gpu && !gdr::gpu_available())
-      GTEST_SKIP() << "no usable CUDA device: " << gdr::device_info().reason;
-  }
-
   gdr::TriMesh cdt(const Pslg& g, CdtMethod method, bool remove_exterior) {
     gdr::Refine2dOptions o;
     o.refine = false;
@@ -196,7 +192,6 @@ TEST_P(ParallelCdt, RefinementFromIt) {
   EXPECT_GT(r.stats.steiner_points, 0);
 }
 
-INSTANTIATE_TEST_SUITE_P(Backends, ParallelCdt, ::testing::Values(Backend::Cpu, Backend::Gpu),
-                         [](const auto& info) { return info.param == Backend::Gpu ? "Gpu" : "Cpu"; });
+INSTANTIATE_TEST_SUITE_P(Backends, ParallelCdt, gdr::test::both_backends(), gdr::test::backend_name);
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include "gdr/io.h"
 #include "gdr/refine2d.h"
 #include "gdr/validate.h"
+#include "on_backend.h"
 #include "pslg_shapes.h"
 
 namespace {
@@ -49,13 +50,8 @@ int mislabelled_subsegments(const gdr::TriMesh& m, const Pslg& g) {
   return bad;
 }
 
-class Refine2d : public ::testing::TestWithParam<Backend> {
+class Refine2d : public gdr::test::OnBackend {
  protected:
-  void SetUp() override {
-    if (GetParam() == Backend::Gpu && !gdr::gpu_available())
-      GTEST_SKIP() << "no usable CUDA device: " << gdr::device_info().reason;
-  }
-
   gdr::Refine2dOptions options() const {
     gdr::Refine2dOptions o;
     o.backend = GetParam();
@@ -895,8 +891,7 @@ TEST(Refine2dBackends, AutoChoosesByEstimatedSize) {
   if (gdr::gpu_available()) EXPECT_TRUE(gdr::gpu_warm());
 }
 
-INSTANTIATE_TEST_SUITE_P(Backends, Refine2d, ::testing::Values(Backend::Cpu, Backend::Gpu),
-                         [](const auto& info) { return std::string(gdr::to_string(info.param)); });
+INSTANTIATE_TEST_SUITE_P(Backends, Refine2d, gdr::test::both_backends(), gdr::test::backend_name);
 
 }  // namespace
 

@@ -9,6 +9,7 @@
 #include "gdr/backend.h"
 #include "gdr/refine2d.h"
 #include "gdr/validate.h"
+#include "on_backend.h"
 #include "pslg_shapes.h"
 
 namespace {
@@ -56,13 +57,10 @@ bool finite_quality(const gdr::QualityStats& q) {
 // degree bound (the predicates' underflow used to give 21.8 degrees and non-Delaunay edges).
 // Scaled by a power of two, the points are the unscaled mesh's times that power exactly.
 // The same on both backends (the GPU test skips itself without a usable device).
-class Refine2dScaleOn : public ::testing::TestWithParam<gdr::Backend> {};
-INSTANTIATE_TEST_SUITE_P(Backends, Refine2dScaleOn, ::testing::Values(gdr::Backend::Cpu, gdr::Backend::Gpu),
-                         [](const auto& info) { return info.param == gdr::Backend::Gpu ? "gpu" : "cpu"; });
+class Refine2dScaleOn : public gdr::test::OnBackend {};
+INSTANTIATE_TEST_SUITE_P(Backends, Refine2dScaleOn, gdr::test::both_backends(), gdr::test::backend_name);
 
 TEST_P(Refine2dScaleOn, ExtremeMagnitudesMeshAsTheUnscaledInput) {
-  if (GetParam() == gdr::Backend::Gpu && !gdr::gpu_available())
-    GTEST_SKIP() << "no usable CUDA device: " << gdr::device_info().reason;
   const gdr::Refine2dResult unit = gdr::refine_2d(square_in_square(1), on(GetParam(), 30));
   EXPECT_NEAR(unit.stats.min_angle_deg, 45, 1e-9);
   for (double s : {1e-90, 1e-120, 1e-160, 1e-200, 1e-300, 1e78, 1e120, 1e150, 1e300}) {
@@ -90,8 +88,6 @@ TEST_P(Refine2dScaleOn, ExtremeMagnitudesMeshAsTheUnscaledInput) {
 
 // A box of +-1e54 around a 2x2 square: refinement grades out and ends (it never did).
 TEST_P(Refine2dScaleOn, HugeBoxAroundASmallSquareEnds) {
-  if (GetParam() == gdr::Backend::Gpu && !gdr::gpu_available())
-    GTEST_SKIP() << "no usable CUDA device: " << gdr::device_info().reason;
   Pslg g;
   add_loop(g, {{-1e54, -1e54}, {1e54, -1e54}, {1e54, 1e54}, {-1e54, 1e54}});
   add_loop(g, {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}});
