@@ -581,6 +581,56 @@ void TestSurfaceOnly()
   CHECK(FieldValue(filter->GetOutput(), "VolumeMeshed") == 0);
 }
 
+void TestManifold()
+{
+  // The outer shell of the hollow sphere flattened 33 times: thinner than the default facet
+  // size, so the restricted surface pinches at the rim unless the Manifold criterion refines
+  // there (on by default).
+  vtkSmartPointer<vtkPolyData> full = ReadHollowSphere();
+  vtkNew<vtkCellArray> polys;
+  vtkIdType n;
+  const vtkIdType* ids;
+  for (vtkIdType c = 0; c < 1280; ++c)
+  {
+    full->GetPolys()->GetCellAtId(c, n, ids);
+    polys->InsertNextCell(n, ids);
+  }
+  vtkNew<vtkPoints> points;
+  for (vtkIdType i = 0; i < full->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    full->GetPoint(i, p);
+    points->InsertNextPoint(p[0], p[1], 0.03 * p[2]);
+  }
+  vtkNew<vtkPolyData> thin;
+  thin->SetPoints(points);
+  thin->SetPolys(polys);
+
+  vtkNew<vtkGPURestrictedDelaunay3D> filter;
+  EventLog log;
+  log.Watch(filter);
+  filter->SetInputData(thin);
+  filter->SetBackendToCPU();
+  CHECK(filter->GetManifold() == 1);
+  filter->Update();
+  // (The inner shell's points are unused, and facets whose duals cross the thin part twice are
+  // left out: warnings, both.)
+  CHECK(log.Errors.empty() && !log.WarningContains("not a manifold"));
+  CheckSurface(filter, true);
+  CheckTetrahedra(filter);
+  CHECK(FieldValue(filter->GetOutput(), "ManifoldSplits") > 0);
+  CHECK(FieldValue(filter->GetOutput(), "NonManifoldFacets") == 0);
+
+  // Off: the pinched places are counted, and a warning says so.
+  filter->ManifoldOff();
+  log.Warnings.clear();
+  filter->Update();
+  CHECK(log.Errors.empty());
+  CHECK(FieldValue(filter->GetOutput(), "ManifoldSplits") == 0);
+  CHECK(FieldValue(filter->GetOutput(), "NonManifoldFacets") > 0);
+  CHECK(log.WarningContains("not a manifold"));
+}
+
 void TestPolygons()
 {
   // Quadrilaterals are triangulated; the sphere's volume comes out within 3%.
@@ -870,6 +920,7 @@ int main(int argc, char* argv[])
     { "SliverAngle", TestSliverAngle },
     { "OpenSurface", TestOpenSurface },
     { "SurfaceOnly", TestSurfaceOnly },
+    { "Manifold", TestManifold },
     { "Polygons", TestPolygons },
     { "Features", TestFeatures },
     { "OutOfRange", TestOutOfRange },
