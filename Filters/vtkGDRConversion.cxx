@@ -545,6 +545,7 @@ void vtkGDRConversion::AddStats(const gdr::QualityTetStats& stats, vtkFieldData*
   AddValue<vtkIdTypeArray>(
     fd, "CDTSteinerPoints", static_cast<vtkIdType>(stats.cdt_steiner_points));
   AddValue<vtkIdTypeArray>(fd, "InteriorSeeds", static_cast<vtkIdType>(stats.interior_seeds));
+  AddValue<vtkIdTypeArray>(fd, "BlockedSegments", static_cast<vtkIdType>(stats.blocked_segments));
   AddValue<vtkIdTypeArray>(fd, "BadTetrahedra", static_cast<vtkIdType>(stats.bad_tets));
   AddValue<vtkIdTypeArray>(
     fd, "ProtectedBadTetrahedra", static_cast<vtkIdType>(stats.protected_bad_tets));

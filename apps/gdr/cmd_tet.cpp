@@ -185,6 +185,9 @@ void print_summary(const ArgsTet& a, const Surface& input, const QualityTetResul
     info.row({"", std::string("stopped at the ") + (s.automatic_steiner_cap ? "automatic " : "") +
                       "cap of " + with_commas(s.steiner_cap)});
   if (s.stalled) info.row({"", "stalled: bad elements remain that no point could fix"});
+  if (s.blocked_segments > 0)
+    info.row({"", with_commas(s.blocked_segments) + " input segments left unsplit: their splits kept failing "
+                                                      "(a nearly coplanar facet beside them)"});
   info.row({"backend", backend_line(s.backend_used, s.device_name)});
   info.row({"peak device memory", s.backend_used == Backend::Gpu ? bytes(s.peak_device_bytes)
                                                                   : "- (CPU backend)"});
@@ -268,6 +271,7 @@ void write_stats_json(const std::string& path, const ArgsTet& a, const QualityTe
   j.field("automatic_steiner_cap", s.automatic_steiner_cap);
   j.field("steiner_cap_reached", s.steiner_cap_reached);
   j.field("stalled", s.stalled);
+  j.field("blocked_segments", s.blocked_segments);
   j.field("min_dihedral_deg", s.min_dihedral_deg);
   j.field("max_dihedral_deg", s.max_dihedral_deg);
   j.field("slivers_before", s.slivers_before);

@@ -56,6 +56,9 @@ struct QualityTetStats {
   bool automatic_steiner_cap = false;
   bool steiner_cap_reached = false;
   bool stalled = false;                 // bad elements remain that could not be split
+  // Input segments left unsplit after their splits failed again and again (a nearly
+  // coplanar facet next to them): what would encroach them is left bad (protected_bad_tets).
+  long long blocked_segments = 0;
   double min_dihedral_deg = 0, max_dihedral_deg = 0;
   double max_radius_edge = 0;
   // Sliver removal (sliver_angle > 0): tetrahedra with an angle beyond it before and after,

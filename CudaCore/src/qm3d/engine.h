@@ -34,6 +34,7 @@ struct Strategies {
   bool worst_first = true;   // tetrahedra bad by shape alone worst first, not larger first
   bool crowding = true;      // S3: fewer competitors while most of them lose (large cavities)
   bool interior_seeds = true;  // a graded lattice inside goes into the CDT (cdt3d/seeds.cpp)
+  bool blocking = true;        // segments whose splits keep failing are left as they are (Engine)
 };
 
 struct EngineParams {
@@ -55,6 +56,7 @@ struct EngineResult {
   long long inserted = 0;
   bool cap_reached = false;
   bool stalled = false;
+  long long blocked_segments = 0;  // input segments left unsplit after repeated failures
   m3d::SmoothResult slivers;
   std::size_t peak_bytes = 0;
   std::vector<PhaseTime> phases;
@@ -98,6 +100,7 @@ struct Engine {
   Buf<Candidate> cand_all, cand;  // all splitting points, then the filtered ones
   Buf<Tuple> tuples;
   Buf<double> work_volume;             // six_volume's scratch
+  Buf<int> segment_failures;           // per input segment: splits without a star (blocking)
   double domain_volume = 0, bad_volume = 0;  // six times: all tetrahedra at the start, the bad ones now
   bool allow_deferment = true;
   // Livelock breaker: after an iteration that inserted almost none of its candidates, the
@@ -110,7 +113,7 @@ struct Engine {
   const bool trace = std::getenv("GDR_TRACE") != nullptr;
 
   // counters: [0] broken link found while remeshing, [1] tetrahedra killed, [2] subfaces killed
-  enum { kError = 0, kKilledTets = 1, kKilledSubs = 2, kCounters = 3 };
+  enum { kError = 0, kKilledTets = 1, kKilledSubs = 2, kBlocked = 3, kCounters = 4 };
   static constexpr int kClaimRounds = 8;  // claim rounds per iteration (grow_cavities)
   static constexpr double kFloor = 64;    // competitors at least (crowding)
   m3d::StallDetector stall;
@@ -140,6 +143,7 @@ struct Engine {
       const std::size_t ns = filter(nl);                // line 7 (S1, S3)
       grow_cavities(ns);                                // line 8 (S2, S3, S5)
       const long long won = verify_and_number(ns);
+      if (params.strategies.blocking) block_failing_segments(ns);
       stagnant = !stagnant && won * 50 < static_cast<long long>(ns);
       adjust_crowding(ns, won);
       if (won > 0) {
@@ -189,6 +193,9 @@ struct Engine {
       cand.release_if_oversized();
       tuples.release_if_oversized();
     }
+    int host_ctr[kCounters];
+    counters.download(host_ctr, kCounters);  // blocked after the last insertion
+    res.blocked_segments += host_ctr[kBlocked];
     if (params.sliver_sin > 0) {
       clock.restart();
       res.slivers = m3d::smooth_slivers(dm, m3d::SmoothParams{params.sliver_sin}, MeetsCriteria{params.criteria});
@@ -480,6 +487,38 @@ struct Engine {
     return won;
   }
 
+  // A subsegment whose split point sees no star, iteration after iteration, lies next to a
+  // nearly coplanar facet that the point sees from behind (a scanned surface, where every
+  // edge is a segment; TetGen flips there). Whatever waits on that split would wait for ever,
+  // and refinement around it cascades: the scanned boat at B = 1.4 inserted 140k of its 200k
+  // points after its bad volume had stopped falling. After kBlockAfter such failures the
+  // segment is treated as sharp (mesh3d.h is_sharp_subseg): it is split no more, and what
+  // would encroach it gives up (a protected, reported tetrahedron; a subface left as it is).
+  static constexpr int kBlockAfter = 8;
+  void block_failing_segments(std::size_t ns) {
+    const std::size_t nseg = dm.sharp.size();
+    if (nseg == 0) return;
+    if (segment_failures.size() != nseg) {
+      segment_failures.resize_discard(nseg);
+      segment_failures.zero();
+    }
+    const m3d::TetView mv = dm.view();
+    const Candidate* cs = cand.data();
+    const int* fl = failed.data();
+    int* nf = segment_failures.data();
+    std::uint8_t* sharp = dm.sharp.data();
+    int* blocked = counters.data() + kBlocked;
+    Ops::for_each(ns, [=] GDR_HD(long long j) {
+      if (cs[j].kind != m3d::kSegmentSplit || (fl[j] != m3d::kFailStar && fl[j] != m3d::kFailDelaunay)) return;
+      const int g = m3d::segment_of(mv, cs[j].a, cs[j].b);
+      if (g >= 0 && exec::atomic_add(&nf[g], 1) + 1 == kBlockAfter) {
+        sharp[g] = 1;
+        exec::atomic_add(blocked, 1);
+      }
+    });
+    clock.template stop<Space>("verify");
+  }
+
   // Line 9: remesh each winning cavity (section 6.5) as a fan of new tetrahedra from its
   // point, and each split subface cavity as a fan of new subfaces; then compact (S1) once a
   // tenth of the elements are dead.
@@ -526,6 +565,7 @@ struct Engine {
       throw Error(Status::InternalError, "gQM3d: broken cavity while linking new tetrahedra");
     counters.zero();
     res.inserted += won;
+    res.blocked_segments += host_ctr[kBlocked];
     dead_tets += host_ctr[kKilledTets];
     dead_subs += host_ctr[kKilledSubs];
     clock.template stop<Space>("insert");

@@ -173,6 +173,11 @@ GDR_HD_INLINE int collect_mask(const TetView& m, int t) {
   for (int f = 0; f < 4; ++f)
     if ((mask & (1 << (kSlotFace0 + f))) && (m.sflag[m.tsub[4 * t + f]] & m3d::kSubNoSplit))
       mask &= ~(1 << (kSlotFace0 + f));
+  // Segments blocked since the requests (Engine::block_failing_segments) are not split.
+  for (int e = 0; e < 6; ++e)
+    if ((mask & (1 << (kSlotEdge0 + e))) &&
+        m3d::is_sharp_subseg(m, m.tv[4 * t + m3d::edge_corner(e, 0)], m.tv[4 * t + m3d::edge_corner(e, 1)]))
+      mask &= ~(1 << (kSlotEdge0 + e));
   return mask;
 }
 

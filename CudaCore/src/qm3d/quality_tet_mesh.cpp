@@ -117,10 +117,11 @@ Strategies strategies_from_environment() {
         else if (name == "worst_first") s.worst_first = false;
         else if (name == "crowding") s.crowding = false;
         else if (name == "seeds") s.interior_seeds = false;
+        else if (name == "blocking") s.blocking = false;
         else return name == "s4";  // 2D only: the 3D engine always lists all three kinds together
         return true;
       },
-      "s1, s3, s5, touching, block_rounds, grid_rounds, worst_first, crowding, seeds");
+      "s1, s3, s5, touching, block_rounds, grid_rounds, worst_first, crowding, seeds, blocking");
   return s;
 }
 
@@ -223,6 +224,7 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
     st.iterations = er.iterations;
     st.steiner_cap_reached = er.cap_reached;
     st.stalled = er.stalled;
+    st.blocked_segments = er.blocked_segments;
     st.phases = er.phases;
     st.slivers_before = er.slivers.slivers_before;
     st.slivers_after = er.slivers.slivers_after;
