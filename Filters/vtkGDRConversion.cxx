@@ -571,6 +571,7 @@ void vtkGDRConversion::AddStats(const gdr::RestrictedDelaunayStats& stats, vtkFi
   AddValue<vtkIdTypeArray>(fd, "FeaturePoints", static_cast<vtkIdType>(stats.feature_points));
   AddValue<vtkIdTypeArray>(fd, "BadFacets", static_cast<vtkIdType>(stats.bad_facets));
   AddValue<vtkIdTypeArray>(fd, "BadTetrahedra", static_cast<vtkIdType>(stats.bad_tets));
+  AddValue<vtkIdTypeArray>(fd, "FacetsLeftOut", static_cast<vtkIdType>(stats.facets_left_out));
   AddValue<vtkIdTypeArray>(fd, "ManifoldSplits", static_cast<vtkIdType>(stats.manifold_splits));
   AddValue<vtkIdTypeArray>(fd, "NonManifoldFacets", static_cast<vtkIdType>(stats.non_manifold_facets));
   AddValue<vtkDoubleArray>(fd, "FacetAngle", stats.facet_angle);

@@ -399,6 +399,7 @@ void write_stats_json(const ArgsRdt& a, const RestrictedDelaunayResult& r, const
   j.field("steiner_cap", s.steiner_cap);
   j.field("steiner_cap_reached", s.steiner_cap_reached);
   j.field("stalled", s.stalled);
+  j.field("facets_left_out", s.facets_left_out);
   j.field("manifold_splits", s.manifold_splits);
   j.field("non_manifold_facets", s.non_manifold_facets);
   j.field("manifold_min_size", s.manifold_min_size);

@@ -7,7 +7,7 @@
 // a closed input, with tetrahedra or without, the surface is the boundary of the tetrahedra
 // inside: a restricted facet between two tetrahedra on the same side (its dual touches the
 // input without crossing it, or crosses it twice) bounds nothing and is left out, with a
-// warning.
+// count (facets_left_out).
 //
 // Sharp features (optional: FeatureAngle, or the input's segments) are kept: feature edges
 // are sampled first and protected as constrained segments are in Ruppert's refinement (a
@@ -77,6 +77,9 @@ struct RestrictedDelaunayStats {
   long long triangulation_points = 0, triangulation_tets = 0;  // the whole Delaunay triangulation
   long long output_points = 0, output_tets = 0, output_triangles = 0;
   long long bad_facets = 0, bad_tets = 0;  // left above the bounds (stall or cap)
+  // Restricted facets between two tetrahedra on the same side of a closed input (a dual that
+  // touches it or crosses it twice): they bound nothing and are not in the surface.
+  long long facets_left_out = 0;
   long long manifold_splits = 0;           // facets refined by the manifold criterion
   long long non_manifold_facets = 0;       // surface facets at a non-manifold edge or vertex, at the end
   double manifold_min_size = 0;            // the manifold criterion refines facets down to this

@@ -469,7 +469,7 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
   // duals may have). With a volume, the surface is the boundary of the tetrahedra inside:
   // a restricted facet between two tetrahedra on the same side (rdt3d::same_side: its dual
   // touches the surface without crossing it, or crosses it twice) bounds nothing and is left
-  // out, with a warning. Refining such facets instead (as bad facets) was tried: on
+  // out and counted. Refining such facets instead (as bad facets) was tried: on
   // thingi10k_65778, where they come from circumcentres exactly on the input's planes, it
   // made refinement stall in 6 runs of 10 (0 of 10 without), so they are only left out.
   auto emitted = [&](int t, int f) {
@@ -480,9 +480,7 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
   for (int t = 0; t < m.ntet; ++t)
     for (int f = 0; f < 4; ++f)
       unbounding += (out.tflag[t] & (rdt3d::kRestricted0 << f)) && rdt3d::owns_face(m, t, f) && rdt3d::same_side(m, c, t, f);
-  if (unbounding > 0 && cb.warning)
-    cb.warning(std::to_string(unbounding) + " restricted facet(s) between two tetrahedra on the same side of the surface "
-               "(a dual that touches the surface or crosses it twice) left out of the surface: they bound no volume");
+  st.facets_left_out = unbounding;
   struct Facet {
     int v[3];
     double angle, size, dist, area;
