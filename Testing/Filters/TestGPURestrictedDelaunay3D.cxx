@@ -53,8 +53,9 @@ vtkSmartPointer<vtkPolyData> ReadHollowSphere()
   return reader->GetOutput();
 }
 
-// The hollow sphere's outer shell above z = 0: an open surface.
-vtkSmartPointer<vtkPolyData> Hemisphere()
+// The hollow sphere's outer shell (its first 1280 triangles): those whose corners all pass
+// `keep`, on the sphere's points scaled along z by `zscale`.
+vtkSmartPointer<vtkPolyData> OuterShell(const std::function<bool(const double*)>& keep, double zscale)
 {
   vtkSmartPointer<vtkPolyData> sphere = ReadHollowSphere();
   vtkNew<vtkCellArray> polys;
@@ -63,20 +64,32 @@ vtkSmartPointer<vtkPolyData> Hemisphere()
   for (vtkIdType c = 0; c < 1280; ++c)
   {
     sphere->GetPolys()->GetCellAtId(c, n, ids);
-    bool upper = true;
+    bool kept = true;
     for (vtkIdType k = 0; k < n; ++k)
     {
-      upper = upper && sphere->GetPoint(ids[k])[2] >= 0;
+      kept = kept && keep(sphere->GetPoint(ids[k]));
     }
-    if (upper)
+    if (kept)
     {
       polys->InsertNextCell(n, ids);
     }
   }
-  auto open = vtkSmartPointer<vtkPolyData>::New();
-  open->SetPoints(sphere->GetPoints());
-  open->SetPolys(polys);
-  return open;
+  vtkNew<vtkPoints> points;
+  for (vtkIdType i = 0; i < sphere->GetNumberOfPoints(); ++i)
+  {
+    const double* p = sphere->GetPoint(i);
+    points->InsertNextPoint(p[0], p[1], zscale * p[2]);
+  }
+  auto shell = vtkSmartPointer<vtkPolyData>::New();
+  shell->SetPoints(points);
+  shell->SetPolys(polys);
+  return shell;
+}
+
+// The outer shell above z = 0: an open surface.
+vtkSmartPointer<vtkPolyData> Hemisphere()
+{
+  return OuterShell([](const double* p) { return p[2] >= 0; }, 1.0);
 }
 
 // A unit sphere of latitude-longitude quadrilaterals (triangles at the poles).
@@ -586,25 +599,7 @@ void TestManifold()
   // The outer shell of the hollow sphere flattened 33 times: thinner than the default facet
   // size, so the restricted surface pinches at the rim unless the Manifold criterion refines
   // there (on by default).
-  vtkSmartPointer<vtkPolyData> full = ReadHollowSphere();
-  vtkNew<vtkCellArray> polys;
-  vtkIdType n;
-  const vtkIdType* ids;
-  for (vtkIdType c = 0; c < 1280; ++c)
-  {
-    full->GetPolys()->GetCellAtId(c, n, ids);
-    polys->InsertNextCell(n, ids);
-  }
-  vtkNew<vtkPoints> points;
-  for (vtkIdType i = 0; i < full->GetNumberOfPoints(); ++i)
-  {
-    double p[3];
-    full->GetPoint(i, p);
-    points->InsertNextPoint(p[0], p[1], 0.03 * p[2]);
-  }
-  vtkNew<vtkPolyData> thin;
-  thin->SetPoints(points);
-  thin->SetPolys(polys);
+  vtkSmartPointer<vtkPolyData> thin = OuterShell([](const double*) { return true; }, 0.03);
 
   vtkNew<vtkGPURestrictedDelaunay3D> filter;
   EventLog log;
