@@ -73,10 +73,10 @@ GDR_HD_INLINE bool tet_center(const TetView& m, int t, double* c) {
   return accurate_tet_circumcenter(pt(m, v[0]), pt(m, v[1]), pt(m, v[2]), pt(m, v[3]), c);
 }
 
-// The Voronoi edge dual to face f of t, from t's circumcentre p to the neighbour's q; on the
-// hull (no neighbour) a ray along the face's outward normal, cut at `reach`.
-GDR_HD_INLINE bool dual_segment(const TetView& m, const Criteria& c, int t, int f, double* p, double* q) {
-  if (!tet_center(m, t, p)) return false;
+// The Voronoi edge dual to face f of t, from t's circumcentre p (computed by the caller) to
+// the neighbour's q; on the hull (no neighbour) a ray along the face's outward normal, cut at
+// `reach`.
+GDR_HD_INLINE bool dual_segment_from(const TetView& m, const Criteria& c, int t, int f, const double* p, double* q) {
   const int nb = m.tn[4 * t + f];
   if (nb >= 0) return tet_center(m, nb >> 2, q);
   const int* v = m.tv + 4 * t;
@@ -95,13 +95,20 @@ GDR_HD_INLINE bool dual_segment(const TetView& m, const Criteria& c, int t, int 
 }
 
 // The surface centre x of restricted face f of t (where its dual meets the surface; of
-// several, the centre of the largest surface Delaunay ball) and the input triangle it lies on.
-GDR_HD_INLINE bool surface_centre(const TetView& m, const AabbView& s, const Criteria& c, int t, int f,
-                                  double* x, int* tri) {
-  double p[3], q[3];
-  if (!dual_segment(m, c, t, f, p, q)) return false;
+// several, the centre of the largest surface Delaunay ball) and the input triangle it lies on;
+// p: t's circumcentre.
+GDR_HD_INLINE bool surface_centre_from(const TetView& m, const AabbView& s, const Criteria& c, int t, int f,
+                                       const double* p, double* x, int* tri) {
+  double q[3];
+  if (!dual_segment_from(m, c, t, f, p, q)) return false;
   const int a = m.tv[4 * t + m3d::face_corner(f, 0)];
   return surface_point_on_segment(s, p, q, pt(m, a), x, tri);
+}
+
+GDR_HD_INLINE bool surface_centre(const TetView& m, const AabbView& s, const Criteria& c, int t, int f,
+                                  double* x, int* tri) {
+  double p[3];
+  return tet_center(m, t, p) && surface_centre_from(m, s, c, t, f, p, x, tri);
 }
 
 // Is the face listed from t? Each face is listed once: from the lesser of its two tetrahedra.
@@ -186,11 +193,14 @@ struct RefuseEncroachingCells {
     const Candidate& p = cand[h.pt];
     if (p.kind != m3d::kFreeSplit || p.a == kSurfacePoint) return;
     const int t = h.elem, flags = m.tflag[t];
+    if (!(flags & kRestrictedBits)) return;
+    double o[3];
+    if (!tet_center(m, t, o)) return;
     for (int f = 0; f < 4; ++f) {
       if (!(flags & (kRestricted0 << f))) continue;
       double x[3];
       int tri;
-      if (!surface_centre(m, s, c, t, f, x, &tri)) continue;
+      if (!surface_centre_from(m, s, c, t, f, o, x, &tri)) continue;
       const double r2 = m3d::dist2(x, pt(m, m.tv[4 * t + m3d::face_corner(f, 0)]));
       if (m3d::dist2(p.p, x) < r2) {
         if (!(flags & m3d::kProtected)) exec::atomic_or(&m.tflag[t], m3d::kSplitFace0 << f);
@@ -333,13 +343,15 @@ struct ClassifyFresh {
     const int t = static_cast<int>(i);
     const int flags = m.tflag[t];
     if ((flags & m3d::kDead) || !(flags & m3d::kFresh)) return;
+    double o[3];  // the circumcentre, once for the four duals and the inside test
+    const bool centred = tet_center(m, t, o);
     for (int f = 0; f < 4; ++f) {
       const int nb = m.tn[4 * t + f];
       const int u = nb >> 2;
       if (nb >= 0 && (m.tflag[u] & m3d::kFresh) && u < t) continue;
       double x[3];
       int tri;
-      const bool r = surface_centre(m, s, c, t, f, x, &tri);
+      const bool r = centred && surface_centre_from(m, s, c, t, f, o, x, &tri);
       const bool bad = r && facet_is_bad(m, c, t, f, x);
       set_bit(t, kRestricted0 << f, r);
       set_bit(t, kBadFacet0 << f, bad);
@@ -348,11 +360,7 @@ struct ClassifyFresh {
         set_bit(u, kBadFacet0 << (nb & 3), bad);
       }
     }
-    bool inside = false;
-    if (c.inside) {
-      double o[3];
-      inside = tet_center(m, t, o) && inside_surface(s, o, c.reach);
-    }
+    const bool inside = c.inside && centred && inside_surface(s, o, c.reach);
     set_bit(t, kInterior, inside);
   }
   GDR_HD void set_bit(int t, int bit, bool on) const {
