@@ -134,18 +134,30 @@ GDR_HD_INLINE bool segment_meets_surface(const AabbView& t, const double* p, con
   return hit;
 }
 
+// How a segment meets the surface: proper crossings, and whether any contact was degenerate.
+struct SegmentContacts {
+  int crossings = 0;
+  bool touch = false;
+};
+
 // The point of segment pq on the surface that is farthest from `far_from` (the surface
 // centre of a restricted facet whose corner is far_from: the centre of its largest surface
 // Delaunay ball), and the triangle it lies on. False when pq does not meet the surface.
 // Ties between triangles go to the lower triangle index, so the answer does not depend on
-// the traversal order.
+// the traversal order. `contacts` (optional) counts the crossings on the way.
 GDR_HD_INLINE bool surface_point_on_segment(const AabbView& t, const double* p, const double* q,
-                                            const double* far_from, double* out, int* out_tri) {
+                                            const double* far_from, double* out, int* out_tri,
+                                            SegmentContacts* contacts = nullptr) {
   double best = -1;
   int best_tri = -1;
   for_triangles_near_segment(t, p, q, [&](int tri) {
     const double *a = corner(t, tri, 0), *b = corner(t, tri, 1), *c = corner(t, tri, 2);
-    if (segment_triangle(p, q, a, b, c) == kMiss) return true;
+    const int r = segment_triangle(p, q, a, b, c);
+    if (r == kMiss) return true;
+    if (contacts) {
+      contacts->crossings += r == kCross;
+      contacts->touch = contacts->touch || r == kTouch;
+    }
     double x[3];
     if (pred::orient3d(a, b, c, p) == 0 && pred::orient3d(a, b, c, q) == 0) {
       // Segment in the triangle's plane: its end nearer the triangle's centroid stands in.

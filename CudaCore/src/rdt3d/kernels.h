@@ -97,12 +97,15 @@ GDR_HD_INLINE bool dual_segment_from(const TetView& m, const Criteria& c, int t,
 // The surface centre x of restricted face f of t (where its dual meets the surface; of
 // several, the centre of the largest surface Delaunay ball) and the input triangle it lies on;
 // p: t's circumcentre.
+// `contacts` (optional): how the dual meets the surface, when it could be formed (dual).
 GDR_HD_INLINE bool surface_centre_from(const TetView& m, const AabbView& s, const Criteria& c, int t, int f,
-                                       const double* p, double* x, int* tri) {
+                                       const double* p, double* x, int* tri, SegmentContacts* contacts = nullptr,
+                                       bool* dual = nullptr) {
   double q[3];
   if (!dual_segment_from(m, c, t, f, p, q)) return false;
+  if (dual) *dual = true;
   const int a = m.tv[4 * t + m3d::face_corner(f, 0)];
-  return surface_point_on_segment(s, p, q, pt(m, a), x, tri);
+  return surface_point_on_segment(s, p, q, pt(m, a), x, tri, contacts);
 }
 
 GDR_HD_INLINE bool surface_centre(const TetView& m, const AabbView& s, const Criteria& c, int t, int f,
@@ -345,13 +348,23 @@ struct ClassifyFresh {
     if ((flags & m3d::kDead) || !(flags & m3d::kFresh)) return;
     double o[3];  // the circumcentre, once for the four duals and the inside test
     const bool centred = tet_center(m, t, o);
+    // Inside or not, from a neighbour that is not new (its flag is known) and the parity of
+    // the crossings of the dual between the two circumcentres: exact, and a short segment
+    // where the ray of inside_surface crosses the whole surface's box; the ray decides when
+    // the dual touches the surface degenerately or there is no such neighbour.
+    int known = -1;  // the neighbour
+    SegmentContacts contacts;
     for (int f = 0; f < 4; ++f) {
       const int nb = m.tn[4 * t + f];
       const int u = nb >> 2;
       if (nb >= 0 && (m.tflag[u] & m3d::kFresh) && u < t) continue;
       double x[3];
       int tri;
-      const bool r = centred && surface_centre_from(m, s, c, t, f, o, x, &tri);
+      const bool from_known = c.inside && known < 0 && nb >= 0 && !(m.tflag[u] & m3d::kFresh);
+      bool dual = false;
+      const bool r = centred && surface_centre_from(m, s, c, t, f, o, x, &tri, from_known ? &contacts : nullptr,
+                                                    from_known ? &dual : nullptr);
+      if (dual) known = u;
       const bool bad = r && facet_is_bad(m, c, t, f, x);
       set_bit(t, kRestricted0 << f, r);
       set_bit(t, kBadFacet0 << f, bad);
@@ -360,7 +373,10 @@ struct ClassifyFresh {
         set_bit(u, kBadFacet0 << (nb & 3), bad);
       }
     }
-    const bool inside = c.inside && centred && inside_surface(s, o, c.reach);
+    const bool inside =
+        c.inside && centred &&
+        (known >= 0 && !contacts.touch ? ((m.tflag[known] & kInterior) != 0) != ((contacts.crossings & 1) != 0)
+                                       : inside_surface(s, o, c.reach));
     set_bit(t, kInterior, inside);
   }
   GDR_HD void set_bit(int t, int bit, bool on) const {
