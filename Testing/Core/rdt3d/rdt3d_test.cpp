@@ -413,11 +413,11 @@ TEST_P(RestrictedDelaunayOnBackend, TinyAndHugeCoordinates) {
     const RestrictedDelaunayResult r = restricted_delaunay_3d(s, sizes(GetParam(), h, h / 10, h), {});
     expect_valid(r, s, true, true);
     // About the same mesh, scaled: concurrent insertion need not repeat itself, and on a
-    // mesh of 500 tets the GPU's runs differ by up to 11% (472 against 530, H100,
-    // 2026-11-24), so counts within 15%; the volume, which any valid mesh of this surface
-    // has, within 1%.
-    EXPECT_NEAR(double(r.mesh.tets.size()), double(ref.mesh.tets.size()), 0.15 * ref.mesh.tets.size());
-    EXPECT_NEAR(double(r.mesh.subfaces.size()), double(ref.mesh.subfaces.size()), 0.15 * ref.mesh.subfaces.size());
+    // mesh of 500 tets the GPU's runs differ by up to 15% (472 against 530, 484 against 557,
+    // H100, 2026-11-24), so counts within 20%; the volume, which any valid mesh of this
+    // surface has, within 1%.
+    EXPECT_NEAR(double(r.mesh.tets.size()), double(ref.mesh.tets.size()), 0.2 * ref.mesh.tets.size());
+    EXPECT_NEAR(double(r.mesh.subfaces.size()), double(ref.mesh.subfaces.size()), 0.2 * ref.mesh.subfaces.size());
     EXPECT_NEAR(r.stats.volume, std::ldexp(ref.stats.volume, 3 * e), std::ldexp(0.01 * ref.stats.volume, 3 * e));
   }
 }
