@@ -244,7 +244,7 @@ struct Engine {
                                                core.tuples.data(), core.failed.data()});
     // The cavities of the points refused here are no longer inserted.
     Ops::for_each(nt, m3d::SetInCavity{mv, core.tuples.data(), core.failed.data(), 0});
-    core.clock.template stop<Space>("cavity");
+    core.clock.template stop<Space>("refuse");
   }
 
   // Inserted surface centres are surface points (kFacetPoint); the engine wrote kFreePoint.
