@@ -300,19 +300,14 @@ struct Engine {
   // elements are left, would otherwise let none compete, and the run stalled (H100: spot at
   // B = 2 stopped with one tetrahedron of 8% of the volume unsplit).
   void compute_splitting_points(std::size_t nl, int iter) {
-    set_competing_share(nl);
+    const double n = static_cast<double>(nl);
+    const double share = std::max(crowd_share * std::min(1.0, (dm.ntet / 4.0 + 4096.0) / n), std::min(1.0, kFloor / n));
+    keep_below = static_cast<u64>(share * 4294967296.0);
     cand_all.resize_discard(nl);
     Ops::for_each(nl, ComputeSplittingPoints{dm.view(), params.criteria, list.data(), cand_all.data(),
                                              0x9e3779b9u * static_cast<unsigned>(iter + 1),
                                              params.strategies.worst_first, stagnant, keep_below});
     clock.template stop<Space>("split+locate");
-  }
-
-  // keep_below for nl elements to split (gDP3d's engine uses it too).
-  void set_competing_share(std::size_t nl) {
-    const double n = static_cast<double>(nl);
-    const double share = std::max(crowd_share * std::min(1.0, (dm.ntet / 4.0 + 4096.0) / n), std::min(1.0, kFloor / n));
-    keep_below = static_cast<u64>(share * 4294967296.0);
   }
 
   // Crowding (S3): while the interior is still empty, cavities span hundreds of tetrahedra

@@ -131,7 +131,6 @@ struct Engine {
       const long long won = core.verify_and_number(ns);
       stagnant = !stagnant && won * 50 < static_cast<long long>(ns);
       core.stagnant = stagnant;
-      core.adjust_crowding(ns, won);
       if (won > 0) {
         core.insert(ns, won);  // line 8
         mark_surface_points(ns);
@@ -222,10 +221,10 @@ struct Engine {
     return nl;
   }
 
-  // As gQM3d: when far more elements are bad than can win at once, or most competitors lose
-  // (crowding, qm3d::Engine::adjust_crowding), a random share competes.
+  // As gQM3d: when far more elements are bad than can win at once, a random share competes.
   void compute_splitting_points(std::size_t nl, int iter) {
-    core.set_competing_share(nl);
+    const double share = std::min(1.0, (core.dm.ntet / 4.0 + 4096.0) / static_cast<double>(nl));
+    core.keep_below = static_cast<u64>(share * 4294967296.0);
     core.cand_all.resize_discard(nl);
     Ops::for_each(nl, ComputeSplittingPoints{core.dm.view(), tree, params.criteria, core.list.data(),
                                              core.cand_all.data(), 0x9e3779b9u * static_cast<unsigned>(iter + 1),
