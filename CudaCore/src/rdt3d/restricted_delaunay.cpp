@@ -330,7 +330,16 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
   for (const auto& t : plc.triangles) surface.tri.insert(surface.tri.end(), {t[0], t[1], t[2]});
   surface.tree = rdt3d::build_aabb(surface.xyz, surface.tri);
 
+  // Six times the enclosed volume, signed: the input's orientation (for facets whose dual does
+  // not separate inside from outside) and the domain the stall detector measures against.
+  double signed_volume = 0;
+  for (const auto& t : plc.triangles) {
+    const Point3 &a = plc.points[t[0]], &b = plc.points[t[1]], &d = plc.points[t[2]];
+    signed_volume += a.x * (b.y * d.z - b.z * d.y) - a.y * (b.x * d.z - b.z * d.x) + a.z * (b.x * d.y - b.y * d.x);
+  }
+
   rdt3d::EngineParams params;
+  params.domain_six_volume = std::fabs(signed_volume);
   rdt3d::Criteria& c = params.criteria;
   const double s = std::sin(options.facet_angle * kPi / 180.0);
   c.sin2_facet_angle = s * s;
@@ -445,13 +454,6 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
   st.triangulation_points = m.npts;
   st.triangulation_tets = m.ntet;
 
-  // Input orientation (for facets whose dual does not separate inside from outside): the
-  // sign of the enclosed volume.
-  double signed_volume = 0;
-  for (const auto& t : plc.triangles) {
-    const Point3 &a = plc.points[t[0]], &b = plc.points[t[1]], &d = plc.points[t[2]];
-    signed_volume += a.x * (b.y * d.z - b.z * d.y) - a.y * (b.x * d.z - b.z * d.x) + a.z * (b.x * d.y - b.y * d.x);
-  }
   std::vector<int> new_id(m.npts, -1);
   TetMesh& tm = result.mesh;
   auto use = [&](int v) {
