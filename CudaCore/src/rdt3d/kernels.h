@@ -232,22 +232,33 @@ GDR_HD_INLINE void block(const TetView& m, int a, int b) {
   if (m.prad[b] < r) m.prad[b] = r;
 }
 
+// Turns around edge xy from face f of t (which holds it): visit(u, g) sees each face g that
+// holds xy of the tetrahedra u beyond f, in order, ending with f itself (seen from the other
+// side) when the ring is closed. Returns 1 if visit stopped it, 0 all the way round, -1 at
+// the hull, -2 on a broken ring.
+template <class Visit>
+GDR_HD_INLINE int turn_around_edge(const TetView& m, int t, int f, int x, int y, Visit visit) {
+  const int t0 = t;
+  for (int guard = 0; guard < 1000; ++guard) {
+    const int g = m3d::other_face_at_edge(m, t, f, x, y);
+    if (g < 0) return -2;
+    if (visit(t, g)) return 1;
+    const int nb = m.tn[4 * t + g];
+    if (nb < 0) return -1;
+    t = nb >> 2;
+    f = nb & 3;
+    if (t == t0) return 0;
+  }
+  return -2;
+}
+
 // Does the cavity of point j hold every tetrahedron around edge ab of t? Bowyer-Watson then
 // removes the edge.
 GDR_HD_INLINE bool ring_in_cavity(const TetView& m, int t, int a, int b, int j) {
-  auto mine = [&](int u) { return (m.tflag[u] & m3d::kInCavity) && m.mark[u] == j + 1; };
-  int u = t, g = -1;
-  for (int f = 0; f < 4 && g < 0; ++f)
-    if (m.tv[4 * t + f] != a && m.tv[4 * t + f] != b) g = f;
-  for (int guard = 0; guard < 1000; ++guard) {
-    if (!mine(u)) return false;
-    const int nb = m.tn[4 * u + g];
-    if (nb < 0) return false;
-    u = nb >> 2;
-    if (u == t) return true;  // all the way round
-    g = m3d::other_face_at_edge(m, u, nb & 3, a, b);
-  }
-  return false;
+  int f = 0;  // a face of t that holds ab: opposite a corner other than a and b
+  while (m.tv[4 * t + f] == a || m.tv[4 * t + f] == b) ++f;
+  auto not_mine = [&](int u, int) { return !((m.tflag[u] & m3d::kInCavity) && m.mark[u] == j + 1); };
+  return turn_around_edge(m, t, f, a, b, not_mine) == 0;  // all the way round, every one mine
 }
 
 // Sharp features stay: a point whose cavity would take a feature subsegment away (every
@@ -531,26 +542,6 @@ GDR_HD_INLINE int face_id(const TetView& m, int t, int f) {
   return owns_face(m, t, f) ? 4 * t + f : m.tn[4 * t + f];
 }
 
-// Turns around edge xy from face f of t (which holds it): visit(u, g) sees each face g that
-// holds xy of the tetrahedra u beyond f, in order, ending with f itself (seen from the other
-// side) when the ring is closed. Returns 1 if visit stopped it, 0 all the way round, -1 at
-// the hull, -2 on a broken ring.
-template <class Visit>
-GDR_HD_INLINE int turn_around_edge(const TetView& m, int t, int f, int x, int y, Visit visit) {
-  const int t0 = t;
-  for (int guard = 0; guard < 1000; ++guard) {
-    const int g = m3d::other_face_at_edge(m, t, f, x, y);
-    if (g < 0) return -2;
-    if (visit(t, g)) return 1;
-    const int nb = m.tn[4 * t + g];
-    if (nb < 0) return -1;
-    t = nb >> 2;
-    f = nb & 3;
-    if (t == t0) return 0;
-  }
-  return -2;
-}
-
 // Surface facets at edge xy of surface facet f of t (f included); -1 on a broken ring.
 GDR_HD_INLINE int facets_at_edge(const TetView& m, const Criteria& c, int t, int f, int x, int y) {
   int n = 0;
@@ -650,10 +641,8 @@ struct MarkNonManifold {
       int v[3];
       for (int q = 0; q < 3; ++q) v[q] = m.tv[4 * t + m3d::face_corner(f, q)];
       bool bad = false;
-      double longest2 = 0;
       for (int q = 0; q < 3 && !bad; ++q) {
         const int a = v[q], b = v[(q + 1) % 3];
-        longest2 = fmax(longest2, m3d::dist2(pt(m, a), pt(m, b)));
         const int n = facets_at_edge(m, c, t, f, a, b);
         bad = n > 2 || (n == 1 && c.manifold == kManifold);
       }
@@ -663,6 +652,8 @@ struct MarkNonManifold {
       }
       if (!bad) continue;
       exec::atomic_add(&counts[0], 1);
+      double longest2 = 0;
+      for (int q = 0; q < 3; ++q) longest2 = fmax(longest2, m3d::dist2(pt(m, v[q]), pt(m, v[(q + 1) % 3])));
       const int nb = m.tn[4 * t + f];
       if (!mark || (m.tflag[t] & m3d::kProtected) || (nb >= 0 && (m.tflag[nb >> 2] & m3d::kProtected)) ||
           longest2 < c.manifold_min2)
