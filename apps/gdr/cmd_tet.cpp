@@ -65,6 +65,13 @@ Quality and size:
   --max-steiner N         stop cleanly after inserting N Steiner points (default: no cap
                           for B >= 2 without --min-dihedral, where refinement terminates;
                           otherwise an automatic cap, reported in the summary)
+Input surface:
+  --coplanar-angle DEG    input triangles meeting within DEG of flat form one facet whose
+                          inner edges the mesh need not keep (TetGen's -p facet tolerance,
+                          0.1 there by default); the boundary then follows the input within
+                          that bend, and far fewer points go where a curved or rounded
+                          surface was cut into near-flat triangles (default 0: every edge
+                          between two facets that are not exactly coplanar is kept; at most 5)
 Algorithm:
   --cdt-only              only the constrained Delaunay tetrahedralization, no refinement
   --backend auto|gpu|cpu  where to refine (default auto: GPU for large inputs when present)
@@ -121,6 +128,7 @@ ArgsTet parse_tet(const std::vector<std::string>& args) {
       number("min-dihedral", a.options.min_dihedral_angle),
       number("max-volume", a.options.max_volume),
       number("sliver-angle", a.options.sliver_angle),
+      number("coplanar-angle", a.options.coplanar_angle),
       {"max-steiner", 0, true,
        [&](const std::string& v) {
          a.options.max_steiner_points = parse_integer(cmd, "max-steiner", v);
@@ -392,6 +400,8 @@ int mesh_tet(const ArgsTet& a, bool& written) {
     ValidateOptions vo;
     vo.max_radius_edge = a.options.radius_edge_ratio;
     vo.check_delaunay = a.options.sliver_angle == 0;  // smoothing moves points off Delaunay
+    // Two triangles of a merged facet each lie within the cone of its first one.
+    if (a.options.coplanar_angle > 0) vo.facet_bend_deg = 2 * kMergedFacetCone;
     report = validate_tetmesh(result.mesh, &input, vo);
     t.check = since(t0);
     stop_if_interrupted();

@@ -13,6 +13,10 @@
 
 namespace gdr {
 
+// How far (degrees) the triangles of one facet merged by coplanar_angle may turn from its
+// first triangle's plane.
+constexpr double kMergedFacetCone = 10.0;
+
 struct QualityTetOptions {
   // Largest radius-edge ratio allowed (TetGen's -q B): at least 1.0; 0 turns it off.
   double radius_edge_ratio = 2.0;
@@ -23,6 +27,13 @@ struct QualityTetOptions {
   // Refinement stops cleanly at this many Steiner points. -1 (automatic): a cap applies
   // only where termination is not guaranteed (radius-edge below 2 or a dihedral bound).
   long long max_steiner_points = -1;
+  // Input triangles that meet within this many degrees of flat form one facet: the edge
+  // between them is no segment, and refinement may flip it away, so the mesh boundary
+  // follows the input within that bend instead of keeping every input edge (TetGen's -p
+  // facet tolerance, 0.1 degrees by default there). A merged facet bends at most
+  // kMergedFacetCone degrees in all; beyond, a segment stays. 0 (default): only exactly
+  // coplanar triangles merge, and every input edge between two facets is kept. At most 5.
+  double coplanar_angle = 0.0;
   bool refine = true;      // false: only the constrained Delaunay tetrahedralization
   // Sliver removal after refinement (TetGen's -O, by vertex smoothing only): interior
   // Steiner points of tetrahedra with a dihedral angle below this many degrees (or above

@@ -60,6 +60,9 @@ struct ValidateOptions {
   bool check_delaunay = true;         // constrained Delaunay by exact incircle/insphere
   bool check_conformity = true;       // input points/segments/facets present
   double segment_tolerance = 1e-9;    // relative distance of subsegment vertices from segments
+  // 3D: how far (degrees) subfaces may turn from the input triangles they cover, where the
+  // mesher merged near-flat facets (QualityTetOptions::coplanar_angle); 0: coplanar.
+  double facet_bend_deg = 0;
   std::size_t max_problems = 20;      // cap on problem messages
 };
 

@@ -28,6 +28,8 @@ struct Plc {
   std::vector<int> triangle_origin;              // PLC triangle -> input triangle
   std::vector<int> triangle_facet;               // PLC triangle -> facet id (dense, from 0)
   std::vector<int> facet_origin;                 // facet id -> the input facet id it reports
+  std::vector<unsigned char> facet_planar;       // facet id -> 1: exactly planar; 0: merged
+                                                 // across near-flat edges (coplanar_angle)
   std::vector<std::array<int, 2>> segments;      // every edge that must stay an edge: facet
                                                  // boundaries, edges of 3+ triangles, and the
                                                  // input's own segments (PLC point ids)
@@ -48,6 +50,11 @@ struct Plc {
 
 struct CheckOptions {
   bool require_closed = true;  // false: open surfaces pass (the restricted mesher)
+  // Triangles meeting within this many degrees of flat join one facet, and their shared
+  // edge is no segment (TetGen's facet separation tolerance, -p179.9: 0.1 here); 0: only
+  // exactly coplanar triangles do.
+  double coplanar_angle = 0;
+  double merge_cone = 10;  // degrees: a merged facet stays within this of its first plane
 };
 
 // Checks `surface` and cleans it into a Plc. Throws Error(InvalidInput) for NaN/Inf

@@ -9,8 +9,11 @@
 // cavity rule), so TetGen meshes everything the surface encloses and the cells outside the
 // domain are removed here, by flooding tets from their subfaces.
 //
-// Switches: "pcnO0JQ": p (PLC: TetGen's constrained Delaunay tetrahedralization, which may
-// split segments and facets with Steiner points to recover them), c (keep the convex hull:
+// Switches: "p160cnO0JQ": p (PLC: TetGen's constrained Delaunay tetrahedralization, which may
+// split segments and facets with Steiner points to recover them; 160: TetGen merges two
+// triangles of one marker that meet within 20 degrees of flat, i.e. every pair that
+// check_surface put in one facet, which keeps its facets within a 10-degree cone, and
+// never triangles of two facets, which have two markers), c (keep the convex hull:
 // TetGen's own removal of the exterior cost 0.8 s of 5.5 s on a 370k-triangle surface and is
 // redundant with ours, which also removes the cells outside), n (neighbours), O0 (no
 // mesh optimisation: its flips and smoothing would leave a mesh that is not constrained
@@ -43,6 +46,8 @@ namespace {
 using m3d::HostTetMesh;
 
 std::string str(long long v) { return std::to_string(v); }
+
+const char* const kMergeTolerance = "160";  // see "Switches" above
 
 [[noreturn]] void internal(const std::string& what) {
   throw Error(Status::InternalError, "initial CDT: " + what);
@@ -298,10 +303,11 @@ std::vector<int> tet_cells(const Plc& plc, const HostTetMesh& m) {
     const Point3 a = point(m.sv[3 * s]), b = point(m.sv[3 * s + 1]), c = point(m.sv[3 * s + 2]);
     // Does the subface turn the same way as its facet's reference triangle?
     bool same;
-    if (m.sv[3 * s] < m.input_points && m.sv[3 * s + 1] < m.input_points && m.sv[3 * s + 2] < m.input_points) {
+    if (plc.facet_planar[m.sfacet[s]] && m.sv[3 * s] < m.input_points && m.sv[3 * s + 1] < m.input_points &&
+        m.sv[3 * s + 2] < m.input_points) {
       const int axis = geom::projection_axis(P[r[0]], P[r[1]], P[r[2]]);  // exact: coplanar
       same = geom::orient2d(axis, a, b, c) == geom::orient2d(axis, P[r[0]], P[r[1]], P[r[2]]);
-    } else {  // rounded Steiner points: compare normals, nearly (anti)parallel
+    } else {  // rounded Steiner points, or a facet that bends: compare normals, nearly (anti)parallel
       auto normal = [](const Point3& p, const Point3& q, const Point3& w, double n[3]) {
         const double u[3] = {q.x - p.x, q.y - p.y, q.z - p.z}, v[3] = {w.x - p.x, w.y - p.y, w.z - p.z};
         n[0] = u[1] * v[2] - u[2] * v[1];
@@ -408,7 +414,8 @@ HostTetMesh keep_domain(const Plc& plc, const HostTetMesh& full, const std::vect
   return m;
 }
 
-// Per facet its largest triangle: the best conditioned plane to put its Steiner points on.
+// Per planar facet its largest triangle: the best conditioned plane to put its Steiner
+// points on (-1 for a facet merged across near-flat edges: points go on their subface).
 void set_facet_planes(const Plc& plc, HostTetMesh& m) {
   const std::size_t nf = plc.facet_origin.size();
   m.fplane.assign(3 * nf, -1);
@@ -420,6 +427,7 @@ void set_facet_planes(const Plc& plc, HostTetMesh& m) {
     const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
     const double area2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
     const int f = plc.triangle_facet[t];
+    if (!plc.facet_planar[f]) continue;
     if (area2 > best[f]) {
       best[f] = area2;
       for (int k = 0; k < 3; ++k) m.fplane[3 * f + k] = r[k];
@@ -478,7 +486,7 @@ m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks, const s
   fill_input(plc, seeds, in);
   stamp("fill TetGen input");
   try {
-    run_tetgen("pcnO0JQ", in, out);
+    run_tetgen(std::string("p") + kMergeTolerance + "cnO0JQ", in, out);
   } catch (const Error& e) {
     if (e.status() == Status::OutOfDeviceMemory) throw;
     if (callbacks.warning)
@@ -487,7 +495,7 @@ m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks, const s
                         "constrained Delaunay everywhere");
     out.deinitialize();
     out.initialize();
-    run_tetgen("pcYnO0JQ", in, out);
+    run_tetgen(std::string("p") + kMergeTolerance + "cYnO0JQ", in, out);
   }
   stamp("TetGen");
   if (callbacks.abort && callbacks.abort()) throw Error(Status::Aborted, "aborted after the initial CDT");

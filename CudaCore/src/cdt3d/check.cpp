@@ -252,12 +252,29 @@ void drop_outside_triangles(Plc& plc, const Callbacks& cb) {
                " triangles with no meshed volume on either side (inside holes or cavities)");
 }
 
+// Unit normal of triangle t (rounded; for the near-flat test only).
+std::array<double, 3> unit_normal(const Plc& plc, int t) {
+  const auto& r = plc.triangles[t];
+  const Point3 &a = plc.points[r[0]], &b = plc.points[r[1]], &c = plc.points[r[2]];
+  const double u[3] = {b.x - a.x, b.y - a.y, b.z - a.z}, v[3] = {c.x - a.x, c.y - a.y, c.z - a.z};
+  std::array<double, 3> n = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+  const double l = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  for (double& x : n) x /= l;
+  return n;
+}
+
 // Facets: triangles joined across edges of exactly two triangles that are exactly coplanar
-// and flat (on opposite sides of the edge), so their shared edge is not a segment.
-void make_facets(const Surface& s, const EdgeTable& edges, Plc& plc) {
+// and flat (on opposite sides of the edge), so their shared edge is not a segment. Then,
+// with options.coplanar_angle > 0, these planar facets are merged across edges where they
+// meet within that angle of flat (TetGen's facet separation tolerance), as long as every
+// triangle of a merged facet stays within options.merge_cone of its first triangle's plane
+// (so one projection serves the whole facet) and the input's facet ids agree.
+void make_facets(const Surface& s, const EdgeTable& edges, const CheckOptions& options, Plc& plc) {
   const int nt = static_cast<int>(plc.triangles.size());
   const auto& P = plc.points;
   UnionFind uf(nt);
+  std::vector<int> flat_edges;  // near-flat but not coplanar: merge candidates
+  const double cos_flat = std::cos(options.coplanar_angle * 3.14159265358979323846 / 180.0);
   for (int k = 0; k < edges.size(); ++k) {
     if (edges.count(k) != 2) continue;
     const int t1 = edges.tri[edges.start[k]], t2 = edges.tri[edges.start[k] + 1];
@@ -265,13 +282,28 @@ void make_facets(const Surface& s, const EdgeTable& edges, Plc& plc) {
     const auto& v1 = plc.triangles[t1];
     const auto& v2 = plc.triangles[t2];
     const int c = v1[0] + v1[1] + v1[2] - a - b, d = v2[0] + v2[1] + v2[2] - a - b;
-    if (geom::orient3d(P[a], P[b], P[c], P[d]) != 0) continue;
+    if (geom::orient3d(P[a], P[b], P[c], P[d]) != 0) {
+      if (options.coplanar_angle > 0) {
+        // Flat: the two triangles' normals, turned the same way round the edge, nearly opposite.
+        const double u[3] = {P[b].x - P[a].x, P[b].y - P[a].y, P[b].z - P[a].z};
+        const double x[3] = {P[c].x - P[a].x, P[c].y - P[a].y, P[c].z - P[a].z};
+        const double y[3] = {P[d].x - P[a].x, P[d].y - P[a].y, P[d].z - P[a].z};
+        const double n1[3] = {u[1] * x[2] - u[2] * x[1], u[2] * x[0] - u[0] * x[2], u[0] * x[1] - u[1] * x[0]};
+        const double n2[3] = {u[1] * y[2] - u[2] * y[1], u[2] * y[0] - u[0] * y[2], u[0] * y[1] - u[1] * y[0]};
+        const double dot = n1[0] * n2[0] + n1[1] * n2[1] + n1[2] * n2[2];
+        const double l = std::sqrt((n1[0] * n1[0] + n1[1] * n1[1] + n1[2] * n1[2]) *
+                                   (n2[0] * n2[0] + n2[1] * n2[1] + n2[2] * n2[2]));
+        if (-dot >= cos_flat * l) flat_edges.push_back(k);
+      }
+      continue;
+    }
     const int axis = geom::projection_axis(P[a], P[b], P[c]);
     if (geom::orient2d(axis, P[a], P[b], P[c]) == geom::orient2d(axis, P[a], P[b], P[d])) continue;
     uf.unite(t1, t2);
   }
   plc.triangle_facet.assign(nt, -1);
   plc.facet_origin.clear();
+  plc.facet_planar.clear();
   std::vector<int> id(nt, -1);
   for (int t = 0; t < nt; ++t) {
     const int root = uf.find(t);  // the smallest triangle of the facet
@@ -279,9 +311,59 @@ void make_facets(const Surface& s, const EdgeTable& edges, Plc& plc) {
       id[root] = static_cast<int>(plc.facet_origin.size());
       const int input = plc.triangle_origin[t];
       plc.facet_origin.push_back(s.triangle_facet.empty() ? input : s.triangle_facet[input]);
+      plc.facet_planar.push_back(1);
     }
     plc.triangle_facet[t] = id[root];
   }
+  if (flat_edges.empty()) return;
+
+  // Merge planar facets across near-flat edges: grown from each facet in turn (breadth
+  // first), taking a neighbour only when all its triangles lie within the cone.
+  const int nf = static_cast<int>(plc.facet_origin.size());
+  std::vector<std::vector<int>> tris(nf);
+  for (int t = 0; t < nt; ++t) tris[plc.triangle_facet[t]].push_back(t);
+  std::vector<std::vector<int>> across(nf);  // planar facet -> neighbours over near-flat edges
+  for (int k : flat_edges) {
+    const int f1 = plc.triangle_facet[edges.tri[edges.start[k]]];
+    const int f2 = plc.triangle_facet[edges.tri[edges.start[k] + 1]];
+    if (f1 == f2 || (!s.triangle_facet.empty() && plc.facet_origin[f1] != plc.facet_origin[f2])) continue;
+    across[f1].push_back(f2);
+    across[f2].push_back(f1);
+  }
+  const double cos_cone = std::cos(options.merge_cone * 3.14159265358979323846 / 180.0);
+  std::vector<int> group(nf, -1);
+  std::vector<int> queue;
+  int groups = 0;
+  for (int f = 0; f < nf; ++f) {
+    if (group[f] >= 0) continue;
+    const auto n0 = unit_normal(plc, tris[f][0]);
+    group[f] = groups;
+    queue.assign(1, f);
+    for (std::size_t q = 0; q < queue.size(); ++q)
+      for (int g : across[queue[q]]) {
+        if (group[g] >= 0) continue;
+        bool in_cone = true;
+        for (int t : tris[g]) {
+          const auto n = unit_normal(plc, t);
+          in_cone = in_cone && std::fabs(n[0] * n0[0] + n[1] * n0[1] + n[2] * n0[2]) >= cos_cone;
+        }
+        if (!in_cone) continue;
+        group[g] = groups;
+        queue.push_back(g);
+      }
+    ++groups;
+  }
+  std::vector<int> origin(groups, -1);
+  std::vector<unsigned char> planar(groups, 0), members(groups, 0);
+  for (int f = 0; f < nf; ++f) {
+    const int g = group[f];
+    if (origin[g] < 0) origin[g] = plc.facet_origin[f];
+    members[g] = static_cast<unsigned char>(std::min(2, members[g] + 1));
+  }
+  for (int g = 0; g < groups; ++g) planar[g] = members[g] == 1;
+  for (int t = 0; t < nt; ++t) plc.triangle_facet[t] = group[plc.triangle_facet[t]];
+  plc.facet_origin = std::move(origin);
+  plc.facet_planar = std::move(planar);
 }
 
 // Segments: edges whose triangles are not all in one facet, and the input's segments.
@@ -360,7 +442,7 @@ Plc check_surface(const Surface& surface, const CheckOptions& options, const Cal
   }
   stamp("cells");
   progress(callbacks, 0.8, "facets and segments");
-  make_facets(surface, edges, plc);
+  make_facets(surface, edges, options, plc);
   make_segments(surface, edges, origin, plc);
   stamp("facets, segments");
   progress(callbacks, 1.0, "surface checked");

@@ -424,10 +424,12 @@ struct CheckCavity {
   const CavityTuple* tuples;
   int* failed;
 
-  // Decided on exact data: p on facet F lies on the plane of F's subfaces; p on segment g
+  // Decided on exact data: p on a planar facet F lies on the plane of F's subfaces (on a
+  // facet merged across near-flat edges, the orientation tests decide); p on segment g
   // lies on the plane of a subface that holds both input endpoints of g.
   GDR_HD bool on_plane_of_subface(const Candidate& c, int s) const {
-    if (c.kind == kFacetSplit) return m.sfacet[s] == m.sfacet[c.sub];
+    if (c.kind == kFacetSplit)
+      return m.sfacet[s] == m.sfacet[c.sub] && !(m.fplane && m.fplane[3 * m.sfacet[s]] < 0);
     if (c.kind != kSegmentSplit) return false;
     const int g = segment_of(m, c.a, c.b);
     if (g < 0) return false;

@@ -281,11 +281,12 @@ GDR_HD_INLINE void make_subface_candidate(const TetView& m, int s, unsigned id, 
   const int* sv = m.sv + 3 * s;
   double p[3];
   if (!m3d::tri_circumcenter(pt(m, sv[0]), pt(m, sv[1]), pt(m, sv[2]), p)) return;
-  if (m.fplane) {
+  const int* plane = m.fplane ? m.fplane + 3 * m.sfacet[s] : nullptr;
+  if (plane && plane[0] < 0) plane = nullptr;  // a facet merged across near-flat edges
+  if (plane) {
     // The circumcentre of a needle subface can lie far off its plane in rounded arithmetic;
     // put it back on the facet's plane, spanned by input points.
-    const int* f = m.fplane + 3 * m.sfacet[s];
-    m3d::project_on_plane(pt(m, f[0]), pt(m, f[1]), pt(m, f[2]), p);
+    m3d::project_on_plane(pt(m, plane[0]), pt(m, plane[1]), pt(m, plane[2]), p);
   }
   const double r2 = m3d::dist2(p, pt(m, sv[0]));
   // The walk decides sides in one projection of the facet (the coordinate plane its normal is
@@ -331,6 +332,20 @@ GDR_HD_INLINE void make_subface_candidate(const TetView& m, int s, unsigned id, 
         exec::atomic_or(&m.sflag[s], m3d::kSubNoSplit);
         if (origin >= 0) m3d::protect_tet(m.tflag, origin);
         return;
+      }
+      if (!plane) {
+        // A merged facet bends: the point goes on the plane of the subface it lies in,
+        // moved along the walk's projection axis so that it stays inside that subface.
+        const int drop = 3 - ax - ay;
+        const double* a = pt(m, v[0]);
+        double u1[3], u2[3], n[3];
+        for (int k = 0; k < 3; ++k) {
+          u1[k] = pt(m, v[1])[k] - a[k];
+          u2[k] = pt(m, v[2])[k] - a[k];
+        }
+        m3d::cross3(u1, u2, n);
+        if (n[drop] == 0) return;
+        p[drop] = a[drop] - (n[ax] * (p[ax] - a[ax]) + n[ay] * (p[ay] - a[ay])) / n[drop];
       }
       for (int k = 0; k < 3; ++k) out.p[k] = p[k];
       out.kind = m3d::kFacetSplit;

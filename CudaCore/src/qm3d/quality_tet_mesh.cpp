@@ -137,6 +137,8 @@ void validate_quality_tet_input(const Surface& input, const QualityTetOptions& o
     bad("minimum dihedral angle must be in [0, 60] degrees, got " + std::to_string(o.min_dihedral_angle));
   if (!(o.sliver_angle >= 0 && o.sliver_angle <= 30))
     bad("sliver angle must be in [0, 30] degrees, got " + std::to_string(o.sliver_angle));
+  if (!(o.coplanar_angle >= 0 && o.coplanar_angle <= 5))
+    bad("coplanar angle must be in [0, 5] degrees, got " + std::to_string(o.coplanar_angle));
   if (!(o.max_volume >= 0 && std::isfinite(o.max_volume)))
     bad("maximum volume must be >= 0 and finite, got " + std::to_string(o.max_volume));
   if (o.max_steiner_points < -1) bad("maximum Steiner points must be >= 0 (or -1: automatic)");
@@ -162,7 +164,10 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
   };
 
   progress(0.0, "checking input");
-  const cdt3d::Plc plc = cdt3d::check_surface(input, {}, cb);
+  cdt3d::CheckOptions check;
+  check.coplanar_angle = options.coplanar_angle;
+  check.merge_cone = kMergedFacetCone;
+  const cdt3d::Plc plc = cdt3d::check_surface(input, check, cb);
   st.input_seconds = since(t_start);
   st.duplicate_points_merged = plc.duplicate_points_merged;
   st.duplicate_triangles_merged = plc.duplicate_triangles_merged;

@@ -49,18 +49,26 @@ using detail::sub;
 struct FacetTest {
   Point3 a;
   V3 e1, e2, n;
-  double n2 = 0, plane_tol = 0, area = 0;
-  FacetTest(const Point3& pa, const Point3& pb, const Point3& pc, double tolerance)
+  double n2 = 0, plane_tol = 0, area = 0, longest = 0, bend_sin = 0;
+  // `bend_deg`: subfaces may turn this far from the triangle (merged near-flat facets).
+  FacetTest(const Point3& pa, const Point3& pb, const Point3& pc, double tolerance, double bend_deg)
       : a(pa), e1(sub(pb, pa)), e2(sub(pc, pa)), n(cross(e1, e2)) {
     n2 = dot(n, n);
     area = 0.5 * std::sqrt(n2);
-    const double longest = std::sqrt(std::max({dot(e1, e1), dot(e2, e2), dot(sub(pc, pb), sub(pc, pb))}));
+    longest = std::sqrt(std::max({dot(e1, e1), dot(e2, e2), dot(sub(pc, pb), sub(pc, pb))}));
     plane_tol = tolerance * longest;
+    bend_sin = std::sin(bend_deg * 3.14159265358979323846 / 180.0);
   }
   // Area shared with the input triangle, in units of the input triangle's area (0 when
-  // off the plane or disjoint).
+  // off the plane or disjoint), measured in the triangle's plane.
   double shared(const Point3& p, const Point3& q, const Point3& r) const {
     const double inv = 1.0 / std::sqrt(n2);
+    double plane_tol = this->plane_tol;
+    if (bend_sin > 0) {
+      const double sub_longest = std::sqrt(std::max({dot(sub(q, p), sub(q, p)), dot(sub(r, q), sub(r, q)),
+                                                     dot(sub(p, r), sub(p, r))}));
+      plane_tol = std::max(plane_tol, bend_sin * (longest + sub_longest));
+    }
     std::array<double, 2> poly[8], next[8];
     int count = 0;
     for (const Point3* v : {&p, &q, &r}) {
@@ -304,7 +312,7 @@ ValidationReport validate_tetmesh(const TetMesh& mesh, const Surface* input,
         facet_ok[k] = 0;
         continue;
       }
-      const FacetTest test(P[a], P[b], P[c], options.segment_tolerance);
+      const FacetTest test(P[a], P[b], P[c], options.segment_tolerance, options.facet_bend_deg);
       if (test.area == 0) continue;  // a degenerate input triangle covers nothing
       std::unordered_set<int> seen;
       std::vector<std::pair<int, double>> stack;
@@ -317,10 +325,15 @@ ValidationReport validate_tetmesh(const TetMesh& mesh, const Surface* input,
         }
       };
       for (std::size_t j = vstart[a]; j < vstart[a + 1]; ++j) visit(vfaces[j]);
+      // With bent facets, subfaces of other facets near a corner can overlap the triangle's
+      // plane within the tolerance (a saddle): the triangle must be covered by one facet.
+      const bool per_facet = test.bend_sin > 0 && mesh.subface_facet.size() == F.size();
+      std::unordered_map<int, double> by_facet;
       double covered = 0;
       while (!stack.empty()) {
         const int f = stack.back().first;
-        covered += stack.back().second;
+        if (per_facet) covered = std::max(covered, by_facet[mesh.subface_facet[f]] += stack.back().second);
+        else covered += stack.back().second;
         stack.pop_back();
         for (int e = 0; e < 3; ++e) {
           const int u = std::min(F[f][e], F[f][(e + 1) % 3]), w = std::max(F[f][e], F[f][(e + 1) % 3]);

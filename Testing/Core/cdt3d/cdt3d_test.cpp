@@ -4,6 +4,8 @@
 // every surface of ../shared/data.
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -26,7 +28,10 @@ using cdt3d::check_surface;
 using cdt3d::initial_cdt;
 using cdt3d::interior_seeds;
 using cdt3d::Plc;
+using cdt3d::CheckOptions;
 using test::add_box;
+using test::cube_with_rough_top;
+using test::polygon_prism;
 using test::unit_cube;
 
 // The error check_surface throws for `s` (status and message); fails the test if none.
@@ -235,6 +240,49 @@ TEST(CheckSurface, CubeHasSixFacetsAndTwelveSegments) {
   EXPECT_NEAR(plc.volume, 1.0, 1e-15);
   for (int t = 0; t < 12; t += 2) EXPECT_EQ(plc.triangle_facet[t], plc.triangle_facet[t + 1]);
   EXPECT_EQ(plc.facet_origin[2], 4);  // reported as its first input triangle
+}
+
+// TetGen's facet tolerance: triangles that meet within coplanar_angle of flat form one facet
+// (not planar), their shared edges are no segments; by default every such edge stays.
+TEST(CheckSurface, NearlyFlatTrianglesMergeWithinTheCoplanarAngle) {
+  const Surface s = cube_with_rough_top(8);
+  const Plc exact = check_surface(s);
+  CheckOptions merge;
+  merge.coplanar_angle = 0.1;
+  const Plc merged = check_surface(s, merge);
+  // Bottom, four sides, and the 16 top triangles, two pairs of which are exactly coplanar.
+  EXPECT_EQ(exact.facet_origin.size(), 5u + 14u);
+  EXPECT_EQ(merged.facet_origin.size(), 6u);
+  EXPECT_EQ(exact.segments.size(), merged.segments.size() + 13u);  // the fan's other inner edges
+  int bent = 0;
+  for (unsigned char planar : merged.facet_planar) bent += !planar;
+  EXPECT_EQ(bent, 1);
+  for (unsigned char planar : exact.facet_planar) EXPECT_TRUE(planar);
+  // A tolerance of 0.01 degrees merges none of it.
+  merge.coplanar_angle = 0.01;
+  EXPECT_EQ(check_surface(s, merge).facet_origin.size(), exact.facet_origin.size());
+}
+
+// A merged facet bends at most merge_cone degrees in all: the sides of an 80-gon prism
+// (4.5 degrees apart) merge at a tolerance of 5 degrees, in runs of at most five sides (two
+// either way from the first), never with the caps.
+TEST(CheckSurface, MergedFacetsStayWithinTheirCone) {
+  const Surface s = polygon_prism(80);
+  CheckOptions merge;
+  merge.coplanar_angle = 5;
+  merge.merge_cone = 10;
+  const Plc plc = check_surface(s, merge);
+  std::map<int, std::vector<int>> sides;  // facet -> side triangles
+  for (std::size_t t = 0; t < 160; ++t) sides[plc.triangle_facet[t]].push_back(static_cast<int>(t));
+  EXPECT_GE(sides.size(), 16u);
+  EXPECT_LT(sides.size(), 80u);
+  for (const auto& [f, tris] : sides) {
+    EXPECT_LE(tris.size(), 10u) << "facet " << f;
+    EXPECT_FALSE(tris.size() > 2 && plc.facet_planar[f]);
+    for (std::size_t t = 160; t < s.triangles.size(); ++t) EXPECT_NE(plc.triangle_facet[t], f);
+  }
+  merge.coplanar_angle = 4;  // below the turn: nothing merges
+  EXPECT_EQ(check_surface(s, merge).facet_origin.size(), 82u);
 }
 
 TEST(CheckSurface, InputFacetIdsAreReportedAndInputSegmentsKept) {

@@ -52,6 +52,61 @@ inline Surface split_box() {
   return s;
 }
 
+// The unit cube with its top face cut into a fan of skinny triangles whose far corners are
+// lifted by up to 4e-5 (for n = 8, 14 of their 15 inner edges are not flat, but within 0.06
+// degrees of it), `n` triangles along each of the two far edges. The faces x = 1 and y = 1 take the
+// lifted corners as fans from their bottom corners and stay exactly planar. The volume is
+// 1 plus the little the lifts add.
+inline Surface cube_with_rough_top(int n) {
+  Surface s;
+  auto point = [&](double x, double y, double z) {
+    s.points.push_back({x, y, z});
+    return static_cast<int>(s.points.size()) - 1;
+  };
+  const int b00 = point(0, 0, 0), b10 = point(1, 0, 0), b11 = point(1, 1, 0), b01 = point(0, 1, 0);
+  const int t00 = point(0, 0, 1), t10 = point(1, 0, 1), t11 = point(1, 1, 1), t01 = point(0, 1, 1);
+  auto lift = [](int k) { return 1 + 4e-5 * (((k * 7) % 5) - 2) / 2.0; };
+  std::vector<int> along_x1 = {t10}, along_y1 = {t11};  // far edges, away from t00's corner
+  for (int k = 1; k < n; ++k) along_x1.push_back(point(1, double(k) / n, lift(k)));
+  along_x1.push_back(t11);
+  for (int k = 1; k < n; ++k) along_y1.push_back(point(1 - double(k) / n, 1, lift(k + n)));
+  along_y1.push_back(t01);
+  auto tri = [&](int a, int b, int c) { s.triangles.push_back({a, b, c}); };
+  tri(b00, b01, b11), tri(b00, b11, b10);  // bottom
+  tri(b00, b10, t10), tri(b00, t10, t00);  // y = 0
+  tri(b00, t00, t01), tri(b00, t01, b01);  // x = 0
+  for (int k = 0; k < n; ++k) {
+    tri(t00, along_x1[k], along_x1[k + 1]);  // top
+    tri(t00, along_y1[k], along_y1[k + 1]);
+    tri(b10, along_x1[k + 1], along_x1[k]);  // x = 1
+    tri(b11, along_y1[k + 1], along_y1[k]);  // y = 1
+  }
+  tri(b10, b11, t11);
+  tri(b11, b01, t01);
+  return s;
+}
+
+// A prism over a regular n-gon of radius 1 (height 1): its n sides turn 360/n degrees from
+// one to the next.
+inline Surface polygon_prism(int n) {
+  Surface s;
+  for (int z = 0; z < 2; ++z)
+    for (int k = 0; k < n; ++k) {
+      const double a = 2 * 3.14159265358979323846 * k / n;
+      s.points.push_back({std::cos(a), std::sin(a), double(z)});
+    }
+  for (int k = 0; k < n; ++k) {
+    const int j = (k + 1) % n;
+    s.triangles.push_back({k, j, n + j});
+    s.triangles.push_back({k, n + j, n + k});
+  }
+  for (int k = 1; k + 1 < n; ++k) {
+    s.triangles.push_back({0, k + 1, k});
+    s.triangles.push_back({n, n + k, n + k + 1});
+  }
+  return s;
+}
+
 // A sphere of radius r around c: an icosahedron subdivided `levels` times (20 * 4^levels
 // triangles), outward.
 inline Surface icosphere(int levels, double r = 1, Point3 c = {0, 0, 0}) {

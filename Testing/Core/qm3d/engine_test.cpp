@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "../cdt3d/surfaces.h"
 #include "box_mesh.h"
 #include "gdr/backend.h"
 #include "gdr/io.h"
@@ -266,6 +267,38 @@ TEST(QualityTetMesh, RegionSeedVolumeBoundsApplyPerRegion) {
     EXPECT_NEAR(vsum[2], 1.0, 1e-9);
     const gdr::ValidationReport rep = gdr::validate_tetmesh(m, &s, {});
     EXPECT_TRUE(rep.valid) << rep.summary();
+  }
+}
+
+// TetGen's facet tolerance (QualityTetOptions::coplanar_angle): a cube whose top is a fan of
+// skinny, nearly coplanar triangles. Kept exactly, every fan edge is a segment that the mesh
+// must resolve; merged into one facet, the fan's edges may go, and the mesh needs fewer
+// points. Both validate (the merged one with its subfaces allowed to bend from the input
+// triangles), and the merged volume stays that of the input up to the lifts (4e-5).
+TEST(QualityTetMesh, NearlyFlatFacetsMergeIntoFewerPoints) {
+  const gdr::Surface s = gdr::test::cube_with_rough_top(8);
+  for (gdr::Backend b : backends()) {
+    gdr::QualityTetOptions o;
+    o.radius_edge_ratio = 1.4;
+    o.backend = b;
+    const gdr::QualityTetResult exact = gdr::quality_tet_mesh(s, o, {});
+    o.coplanar_angle = 0.1;
+    const gdr::QualityTetResult merged = gdr::quality_tet_mesh(s, o, {});
+    EXPECT_EQ(exact.stats.input_facets, 19);
+    EXPECT_EQ(merged.stats.input_facets, 6);
+    const gdr::ValidationReport rep_exact = gdr::validate_tetmesh(exact.mesh, &s, {});
+    EXPECT_TRUE(rep_exact.valid) << rep_exact.summary();
+    gdr::ValidateOptions bent;
+    bent.facet_bend_deg = 2 * gdr::kMergedFacetCone;
+    const gdr::ValidationReport rep_merged = gdr::validate_tetmesh(merged.mesh, &s, bent);
+    EXPECT_TRUE(rep_merged.valid) << rep_merged.summary();
+    EXPECT_FALSE(gdr::validate_tetmesh(merged.mesh, &s, {}).valid);  // the fan is not kept
+    const double v = volume_of(exact.mesh);
+    EXPECT_NEAR(volume_of(merged.mesh), v, 4e-5);
+    EXPECT_LT(merged.stats.output_points, exact.stats.output_points);
+    std::printf("rough-top cube, B = 1.4, %s: %lld points kept exactly, %lld merged (volume %.9f, %.9f)\n",
+                b == gdr::Backend::Gpu ? "GPU" : "CPU", exact.stats.output_points, merged.stats.output_points, v,
+                volume_of(merged.mesh));
   }
 }
 
