@@ -146,6 +146,7 @@ int vtkGPUQualityTetMesh::RequestData(vtkInformation* vtkNotUsed(request),
   options.radius_edge_ratio = this->RadiusEdgeRatio;
   options.min_dihedral_angle = this->MinimumDihedralAngle;
   options.sliver_angle = this->SliverAngle;
+  options.coplanar_angle = this->CoplanarAngle;
   options.max_volume = this->MaximumVolume;
   options.max_steiner_points = static_cast<long long>(this->MaximumSteinerPoints);
   if (!run.SelectBackend(this->Backend, options.backend))
@@ -193,6 +194,7 @@ void vtkGPUQualityTetMesh::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RadiusEdgeRatio: " << this->RadiusEdgeRatio << "\n";
   os << indent << "MinimumDihedralAngle: " << this->MinimumDihedralAngle << "\n";
   os << indent << "SliverAngle: " << this->SliverAngle << "\n";
+  os << indent << "CoplanarAngle: " << this->CoplanarAngle << "\n";
   os << indent << "MaximumVolume: " << this->MaximumVolume << "\n";
   os << indent << "MaximumSteinerPoints: " << this->MaximumSteinerPoints << "\n";
   os << indent << "Backend: "

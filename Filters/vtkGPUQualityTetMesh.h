@@ -100,6 +100,18 @@ public:
 
   ///@{
   /**
+   * Input triangles that meet within this many degrees of flat form one facet whose inner
+   * edges the mesh need not keep (TetGen's -p facet tolerance, 0.1 there by default): far
+   * fewer points where a curved or rounded surface was cut into nearly flat triangles, and
+   * the boundary follows the input within that bend. Clamped to [0, 5]; 0 (default) keeps
+   * every edge between two facets that are not exactly coplanar.
+   */
+  vtkSetClampMacro(CoplanarAngle, double, 0.0, 5.0);
+  vtkGetMacro(CoplanarAngle, double);
+  ///@}
+
+  ///@{
+  /**
    * Upper bound on the volume of the tetrahedra (TetGen's -a); 0 (default) turns it off.
    */
   vtkSetClampMacro(MaximumVolume, double, 0.0, VTK_DOUBLE_MAX);
@@ -149,6 +161,7 @@ protected:
   double RadiusEdgeRatio = 2.0;
   double MinimumDihedralAngle = 0.0;
   double SliverAngle = 0.0;
+  double CoplanarAngle = 0.0;
   double MaximumVolume = 0.0;
   vtkIdType MaximumSteinerPoints = -1;
   int Backend = AUTO;

@@ -24,9 +24,11 @@
 #include "vtkUnstructuredGrid.h"
 #include "vtkXMLPolyDataReader.h"
 
+#include "../Core/cdt3d/surfaces.h"
 #include "gdr/backend.h"
 #include "gdr/io.h"
 #include "gdr/pslg.h"
+#include "gdr/qm3d.h"
 #include "gdr/validate.h"
 
 #include <algorithm>
@@ -429,6 +431,44 @@ void TestSliverAngle()
   CHECK(std::fabs(beyond - after) <= 0.01 * after + 2); // float arrays against doubles
   filter->SetSliverAngle(45);
   CHECK(filter->GetSliverAngle() == 30);
+}
+
+// CoplanarAngle (TetGen's facet tolerance): the cube whose top is a fan of skinny, nearly
+// coplanar triangles meshes with fewer points when they merge into one facet; the mesh is
+// valid with its subfaces allowed to bend from the input triangles, and not without.
+void TestCoplanarAngle()
+{
+  const gdr::Surface input = gdr::test::cube_with_rough_top(8);
+  vtkSmartPointer<vtkPolyData> pd = PolyDataOf(input);
+  vtkNew<vtkGPUQualityTetMesh> filter;
+  EventLog log;
+  log.Watch(filter);
+  filter->SetInputData(pd);
+  filter->SetBackendToCPU();
+  filter->SetRadiusEdgeRatio(1.4);
+  filter->Update();
+  CHECK(log.Errors.empty());
+  Validate(filter, &input, 0);
+  const vtkIdType exact = filter->GetOutput()->GetNumberOfPoints();
+  filter->SetCoplanarAngle(0.1);
+  filter->Update();
+  CHECK(log.Errors.empty());
+  CheckOutputs(filter);
+  const vtkIdType merged = filter->GetOutput()->GetNumberOfPoints();
+  CHECK(merged < exact);
+  const gdr::TetMesh mesh = TetMeshOf(
+    filter->GetOutput(), vtkPolyData::SafeDownCast(filter->GetOutputDataObject(2)));
+  gdr::ValidateOptions bent;
+  bent.facet_bend_deg = 2 * gdr::kMergedFacetCone;
+  const gdr::ValidationReport report = gdr::validate_tetmesh(mesh, &input, bent);
+  if (!report.valid)
+  {
+    std::cerr << report.summary() << std::endl;
+  }
+  CHECK(report.valid);
+  CHECK(!gdr::validate_tetmesh(mesh, &input, {}).valid);
+  filter->SetCoplanarAngle(9);
+  CHECK(filter->GetCoplanarAngle() == 5);
 }
 
 void TestBushing()
@@ -859,6 +899,7 @@ int main(int argc, char* argv[])
   const std::map<std::string, std::function<void()>> tests = {
     { "HollowSphere", TestHollowSphere },
     { "SliverAngle", TestSliverAngle },
+    { "CoplanarAngle", TestCoplanarAngle },
     { "Bushing", TestBushing },
     { "Polygons", TestPolygons },
     { "UnstructuredGrid", TestUnstructuredGrid },

@@ -195,7 +195,8 @@ void print_summary(const ArgsTet& a, const Surface& input, const QualityTetResul
   if (s.stalled) info.row({"", "stalled: bad elements remain that no point could fix"});
   if (s.blocked_segments > 0)
     info.row({"", with_commas(s.blocked_segments) + " input segments left unsplit: their splits kept failing "
-                                                      "(a nearly coplanar facet beside them)"});
+                                                      "(a nearly coplanar facet beside them; --coplanar-angle 0.1 merges "
+                                                      "such facets, as TetGen does)"});
   info.row({"backend", backend_line(s.backend_used, s.device_name)});
   info.row({"peak device memory", s.backend_used == Backend::Gpu ? bytes(s.peak_device_bytes)
                                                                   : "- (CPU backend)"});
@@ -250,6 +251,7 @@ void write_stats_json(const std::string& path, const ArgsTet& a, const QualityTe
   j.field("min_dihedral_angle", o.min_dihedral_angle);
   j.field("max_volume", o.max_volume);
   j.field("sliver_angle", o.sliver_angle);
+  j.field("coplanar_angle", o.coplanar_angle);
   j.field("max_steiner_points", o.max_steiner_points);
   j.field("refine", o.refine);
   j.field("backend", to_string(o.backend));
