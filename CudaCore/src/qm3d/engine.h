@@ -35,6 +35,7 @@ struct Strategies {
   bool crowding = true;      // S3: fewer competitors while most of them lose (large cavities)
   bool interior_seeds = true;  // a graded lattice inside goes into the CDT (cdt3d/seeds.cpp)
   bool blocking = true;        // segments whose splits keep failing are left as they are (Engine)
+  bool acute_vertices = true;  // protecting balls at acute vertices too (qm3d/features.h)
 };
 
 struct EngineParams {

@@ -57,7 +57,7 @@ int corner(const HostTetMesh& m, int t, int v) {
 
 }  // namespace
 
-void find_sharp_features(HostTetMesh& m, double sharp_angle_deg) {
+void find_sharp_features(HostTetMesh& m, double sharp_angle_deg, double acute_angle_deg) {
   const int ns = m.segments(), np = m.points(), nt = m.tets();
   m.sharp.assign(ns, 0);
   m.prad.assign(np, 0.0f);
@@ -121,6 +121,33 @@ void find_sharp_features(HostTetMesh& m, double sharp_angle_deg) {
   for (int s = 0; s < ns; ++s)
     if (m.sharp[s])
       for (int k = 0; k < 2; ++k) r[m.seg[2 * s + k]] = std::numeric_limits<double>::infinity();
+  if (acute_angle_deg > 0) {
+    // Acute vertices (TetGen): two segments meet there at less than acute_angle_deg.
+    std::vector<std::vector<int>> ends(np);
+    for (int s = 0; s < ns; ++s) {
+      ends[m.seg[2 * s]].push_back(m.seg[2 * s + 1]);
+      ends[m.seg[2 * s + 1]].push_back(m.seg[2 * s]);
+    }
+    const double cos_acute = std::cos(acute_angle_deg * 3.14159265358979323846 / 180.0);
+    for (int v = 0; v < np; ++v) {
+      const double* o = xyz(m, v);
+      for (std::size_t i = 0; i < ends[v].size() && std::isfinite(r[v]); ++i)
+        for (std::size_t j = i + 1; j < ends[v].size(); ++j) {
+          const double* a = xyz(m, ends[v][i]);
+          const double* b = xyz(m, ends[v][j]);
+          double ab = 0, aa = 0, bb = 0;
+          for (int d = 0; d < 3; ++d) {
+            ab += (a[d] - o[d]) * (b[d] - o[d]);
+            aa += (a[d] - o[d]) * (a[d] - o[d]);
+            bb += (b[d] - o[d]) * (b[d] - o[d]);
+          }
+          if (ab > cos_acute * std::sqrt(aa * bb)) {
+            r[v] = std::numeric_limits<double>::infinity();
+            break;
+          }
+        }
+    }
+  }
   for (int t = 0; t < nt; ++t)
     for (int i = 0; i < 4; ++i) {
       const int v = m.tv[4 * t + i];

@@ -102,7 +102,8 @@ long long automatic_steiner_cap(const m3d::HostTetMesh& m, std::size_t estimated
 namespace qm3d {
 
 // Design strategies switched off for a measurement: GDR_DISABLE=s1,s3,s5,touching,
-// block_rounds,grid_rounds,worst_first,crowding (benchmarks only; see Benchmarks/README.md).
+// block_rounds,grid_rounds,worst_first,crowding,seeds,blocking,acute (benchmarks only; see
+// Benchmarks/README.md).
 // Both 3D meshers read it.
 Strategies strategies_from_environment() {
   Strategies s;
@@ -118,10 +119,11 @@ Strategies strategies_from_environment() {
         else if (name == "crowding") s.crowding = false;
         else if (name == "seeds") s.interior_seeds = false;
         else if (name == "blocking") s.blocking = false;
+        else if (name == "acute") s.acute_vertices = false;
         else return name == "s4";  // 2D only: the 3D engine always lists all three kinds together
         return true;
       },
-      "s1, s3, s5, touching, block_rounds, grid_rounds, worst_first, crowding, seeds, blocking");
+      "s1, s3, s5, touching, block_rounds, grid_rounds, worst_first, crowding, seeds, blocking, acute");
   return s;
 }
 
@@ -187,7 +189,7 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
   st.interior_seeds = std::count(mesh.ptype.begin(), mesh.ptype.end(), m3d::kFreePoint);
   st.cdt_steiner_points = mesh.points() - static_cast<long long>(plc.points.size()) - st.interior_seeds;
   if (aborted()) throw Error(Status::Aborted, "aborted by the caller");
-  qm3d::find_sharp_features(mesh);
+  qm3d::find_sharp_features(mesh, 65.0, strategies.acute_vertices ? 60.0 : 0.0);
 
   const std::size_t estimated = estimate_tets(mesh, plc.volume, smallest_volume_bound(options, input));
   st.backend_used = resolve_backend(options.backend, estimated, gpu_min_tets(options));
