@@ -9,11 +9,13 @@
 // cavity rule), so TetGen meshes everything the surface encloses and the cells outside the
 // domain are removed here, by flooding tets from their subfaces.
 //
-// Switches: "p160cnO0JQ": p (PLC: TetGen's constrained Delaunay tetrahedralization, which may
-// split segments and facets with Steiner points to recover them; 160: TetGen merges two
-// triangles of one marker that meet within 20 degrees of flat, i.e. every pair that
-// check_surface put in one facet, which keeps its facets within a 10-degree cone, and
-// never triangles of two facets, which have two markers), c (keep the convex hull:
+// Switches: "pcnO0JQ": p (PLC: TetGen's constrained Delaunay tetrahedralization, which may
+// split segments and facets with Steiner points to recover them; TetGen merges triangles of
+// one marker, i.e. of one facet, that meet within its default 0.1 degree of flat. A facet
+// that check_surface merged across bends larger than that (coplanar_angle) keeps TetGen
+// segments inside, whose Steiner points come back marked with the facet: refinement flips
+// those edges. Asking TetGen to merge them too, at 2-5 degrees, crashed it or gave
+// inconsistent subfaces on boat.off), c (keep the convex hull:
 // TetGen's own removal of the exterior cost 0.8 s of 5.5 s on a 370k-triangle surface and is
 // redundant with ours, which also removes the cells outside), n (neighbours), O0 (no
 // mesh optimisation: its flips and smoothing would leave a mesh that is not constrained
@@ -46,8 +48,6 @@ namespace {
 using m3d::HostTetMesh;
 
 std::string str(long long v) { return std::to_string(v); }
-
-const char* const kMergeTolerance = "160";  // see "Switches" above
 
 [[noreturn]] void internal(const std::string& what) {
   throw Error(Status::InternalError, "initial CDT: " + what);
@@ -486,7 +486,7 @@ m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks, const s
   fill_input(plc, seeds, in);
   stamp("fill TetGen input");
   try {
-    run_tetgen(std::string("p") + kMergeTolerance + "cnO0JQ", in, out);
+    run_tetgen("pcnO0JQ", in, out);
   } catch (const Error& e) {
     if (e.status() == Status::OutOfDeviceMemory) throw;
     if (callbacks.warning)
@@ -495,7 +495,7 @@ m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks, const s
                         "constrained Delaunay everywhere");
     out.deinitialize();
     out.initialize();
-    run_tetgen(std::string("p") + kMergeTolerance + "cYnO0JQ", in, out);
+    run_tetgen("pcYnO0JQ", in, out);
   }
   stamp("TetGen");
   if (callbacks.abort && callbacks.abort()) throw Error(Status::Aborted, "aborted after the initial CDT");

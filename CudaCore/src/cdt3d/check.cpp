@@ -252,13 +252,20 @@ void drop_outside_triangles(Plc& plc, const Callbacks& cb) {
                " triangles with no meshed volume on either side (inside holes or cavities)");
 }
 
-// Unit normal of triangle t (rounded; for the near-flat test only).
+// Normal (b - a) x (c - a) of triangle abc, rounded: for the near-flat tests only.
+std::array<double, 3> normal_of(const Point3& a, const Point3& b, const Point3& c) {
+  const double u[3] = {b.x - a.x, b.y - a.y, b.z - a.z}, v[3] = {c.x - a.x, c.y - a.y, c.z - a.z};
+  return {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+}
+
+double dot3(const std::array<double, 3>& u, const std::array<double, 3>& v) {
+  return u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+}
+
 std::array<double, 3> unit_normal(const Plc& plc, int t) {
   const auto& r = plc.triangles[t];
-  const Point3 &a = plc.points[r[0]], &b = plc.points[r[1]], &c = plc.points[r[2]];
-  const double u[3] = {b.x - a.x, b.y - a.y, b.z - a.z}, v[3] = {c.x - a.x, c.y - a.y, c.z - a.z};
-  std::array<double, 3> n = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-  const double l = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  std::array<double, 3> n = normal_of(plc.points[r[0]], plc.points[r[1]], plc.points[r[2]]);
+  const double l = std::sqrt(dot3(n, n));
   for (double& x : n) x /= l;
   return n;
 }
@@ -285,15 +292,8 @@ void make_facets(const Surface& s, const EdgeTable& edges, const CheckOptions& o
     if (geom::orient3d(P[a], P[b], P[c], P[d]) != 0) {
       if (options.coplanar_angle > 0) {
         // Flat: the two triangles' normals, turned the same way round the edge, nearly opposite.
-        const double u[3] = {P[b].x - P[a].x, P[b].y - P[a].y, P[b].z - P[a].z};
-        const double x[3] = {P[c].x - P[a].x, P[c].y - P[a].y, P[c].z - P[a].z};
-        const double y[3] = {P[d].x - P[a].x, P[d].y - P[a].y, P[d].z - P[a].z};
-        const double n1[3] = {u[1] * x[2] - u[2] * x[1], u[2] * x[0] - u[0] * x[2], u[0] * x[1] - u[1] * x[0]};
-        const double n2[3] = {u[1] * y[2] - u[2] * y[1], u[2] * y[0] - u[0] * y[2], u[0] * y[1] - u[1] * y[0]};
-        const double dot = n1[0] * n2[0] + n1[1] * n2[1] + n1[2] * n2[2];
-        const double l = std::sqrt((n1[0] * n1[0] + n1[1] * n1[1] + n1[2] * n1[2]) *
-                                   (n2[0] * n2[0] + n2[1] * n2[1] + n2[2] * n2[2]));
-        if (-dot >= cos_flat * l) flat_edges.push_back(k);
+        const auto n1 = normal_of(P[a], P[b], P[c]), n2 = normal_of(P[a], P[b], P[d]);
+        if (-dot3(n1, n2) >= cos_flat * std::sqrt(dot3(n1, n1) * dot3(n2, n2))) flat_edges.push_back(k);
       }
       continue;
     }
@@ -344,8 +344,7 @@ void make_facets(const Surface& s, const EdgeTable& edges, const CheckOptions& o
         if (group[g] >= 0) continue;
         bool in_cone = true;
         for (int t : tris[g]) {
-          const auto n = unit_normal(plc, t);
-          in_cone = in_cone && std::fabs(n[0] * n0[0] + n[1] * n0[1] + n[2] * n0[2]) >= cos_cone;
+          in_cone = in_cone && std::fabs(dot3(unit_normal(plc, t), n0)) >= cos_cone;
         }
         if (!in_cone) continue;
         group[g] = groups;

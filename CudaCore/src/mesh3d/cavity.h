@@ -429,7 +429,7 @@ struct CheckCavity {
   // lies on the plane of a subface that holds both input endpoints of g.
   GDR_HD bool on_plane_of_subface(const Candidate& c, int s) const {
     if (c.kind == kFacetSplit)
-      return m.sfacet[s] == m.sfacet[c.sub] && !(m.fplane && m.fplane[3 * m.sfacet[s]] < 0);
+      return m.sfacet[s] == m.sfacet[c.sub] && !facet_bends(m, m.sfacet[s]);
     if (c.kind != kSegmentSplit) return false;
     const int g = segment_of(m, c.a, c.b);
     if (g < 0) return false;
@@ -437,10 +437,35 @@ struct CheckCavity {
     return pred::orient3d(pt(m, v[0]), pt(m, v[1]), pt(m, v[2]), pt(m, m.seg[2 * g])) == 0 &&
            pred::orient3d(pt(m, v[0]), pt(m, v[1]), pt(m, v[2]), pt(m, m.seg[2 * g + 1])) == 0;
   }
+  // On a facet that bends, a subface cavity spans subfaces of slightly different planes: the
+  // new subface (p, x, y) on each of its boundary edges xy must keep p on the side of xy
+  // where the old subface's third corner z was (in the projection along the subface's
+  // dominant normal axis, exact orient2d), or the surface would fold over itself there.
+  GDR_HD bool folds(const Candidate& c, int j, int s) const {
+    const int* v = m.sv + 3 * s;
+    const int drop = subface_normal_axis(m, s);
+    const int ax = drop == 0 ? 1 : 0, ay = drop == 2 ? 1 : 2;
+    const double p2[2] = {c.p[ax], c.p[ay]};
+    for (int e = 0; e < 3; ++e) {
+      if (!compute_subface_fan_edge(m, c, j, s, e)) continue;
+      const double* x = pt(m, v[(e + 1) % 3]);
+      const double* y = pt(m, v[(e + 2) % 3]);
+      const double* z = pt(m, v[e]);
+      const double x2[2] = {x[ax], x[ay]}, y2[2] = {y[ax], y[ay]}, z2[2] = {z[ax], z[ay]};
+      const double sz = pred::orient2d(x2, y2, z2), sp = pred::orient2d(x2, y2, p2);
+      if (!(sz > 0 ? sp > 0 : sp < 0)) return true;
+    }
+    return false;
+  }
+
   GDR_HD void operator()(long long i) const {
     const CavityTuple& h = tuples[i];
-    if (is_sub_tuple(h) || result_of(h) != kCavity || failed[h.pt]) return;
+    if (result_of(h) != kCavity || failed[h.pt]) return;
     const Candidate& c = cand[h.pt];
+    if (is_sub_tuple(h)) {
+      if (facet_bends(m, m.sfacet[h.elem]) && folds(c, h.pt, h.elem)) failed[h.pt] = kFailStar;
+      return;
+    }
     const int t = h.elem;
     for (int f = 0; f < 4; ++f) {
       const int k = cavity_face(m, h.pt, t, f);

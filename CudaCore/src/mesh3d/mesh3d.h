@@ -351,6 +351,23 @@ GDR_HD_INLINE int segment_of(const TetView& m, int a, int b) {
   return -1;
 }
 
+// The coordinate axis most nearly along subface s's normal: dropping it projects s (and
+// its facet's nearby subfaces) without degeneracy. Rounded, but only picks a projection.
+GDR_HD_INLINE int subface_normal_axis(const TetView& m, int s) {
+  const int* v = m.sv + 3 * s;
+  double u1[3], u2[3], n[3];
+  for (int k = 0; k < 3; ++k) {
+    u1[k] = pt(m, v[1])[k] - pt(m, v[0])[k];
+    u2[k] = pt(m, v[2])[k] - pt(m, v[0])[k];
+  }
+  cross3(u1, u2, n);
+  return fabs(n[0]) >= fabs(n[1]) ? (fabs(n[0]) >= fabs(n[2]) ? 0 : 2) : (fabs(n[1]) >= fabs(n[2]) ? 1 : 2);
+}
+
+// Does facet f bend (merged across near-flat edges, cdt3d's coplanar_angle)? Its points go
+// on the plane of their subface, not on one plane of the facet.
+GDR_HD_INLINE bool facet_bends(const TetView& m, int f) { return m.fplane && m.fplane[3 * f] < 0; }
+
 // Is the subsegment ab on a sharp segment (where facets meet at a small angle)?
 GDR_HD_INLINE bool is_sharp_subseg(const TetView& m, int a, int b) {
   const int s = segment_of(m, a, b);

@@ -281,12 +281,12 @@ GDR_HD_INLINE void make_subface_candidate(const TetView& m, int s, unsigned id, 
   const int* sv = m.sv + 3 * s;
   double p[3];
   if (!m3d::tri_circumcenter(pt(m, sv[0]), pt(m, sv[1]), pt(m, sv[2]), p)) return;
-  const int* plane = m.fplane ? m.fplane + 3 * m.sfacet[s] : nullptr;
-  if (plane && plane[0] < 0) plane = nullptr;  // a facet merged across near-flat edges
-  if (plane) {
+  const bool bends = m3d::facet_bends(m, m.sfacet[s]);
+  if (m.fplane && !bends) {
     // The circumcentre of a needle subface can lie far off its plane in rounded arithmetic;
     // put it back on the facet's plane, spanned by input points.
-    m3d::project_on_plane(pt(m, plane[0]), pt(m, plane[1]), pt(m, plane[2]), p);
+    const int* f = m.fplane + 3 * m.sfacet[s];
+    m3d::project_on_plane(pt(m, f[0]), pt(m, f[1]), pt(m, f[2]), p);
   }
   const double r2 = m3d::dist2(p, pt(m, sv[0]));
   // The walk decides sides in one projection of the facet (the coordinate plane its normal is
@@ -294,18 +294,8 @@ GDR_HD_INLINE void make_subface_candidate(const TetView& m, int s, unsigned id, 
   // subfaces at an edge then always agree on which side p lies. (Planes through each
   // subface's own tetrahedron apex did not: with p a rounding off the facet, both could call
   // it beyond their shared edge, and the walk went to and fro up to its step bound.)
-  int ax = 0, ay = 1;
-  {
-    double u1[3], u2[3], n[3];
-    for (int k = 0; k < 3; ++k) {
-      u1[k] = pt(m, sv[1])[k] - pt(m, sv[0])[k];
-      u2[k] = pt(m, sv[2])[k] - pt(m, sv[0])[k];
-    }
-    m3d::cross3(u1, u2, n);
-    const int drop = fabs(n[0]) >= fabs(n[1]) ? (fabs(n[0]) >= fabs(n[2]) ? 0 : 2) : (fabs(n[1]) >= fabs(n[2]) ? 1 : 2);
-    ax = drop == 0 ? 1 : 0;
-    ay = drop == 2 ? 1 : 2;
-  }
+  const int drop = m3d::subface_normal_axis(m, s);
+  const int ax = drop == 0 ? 1 : 0, ay = drop == 2 ? 1 : 2;
   const double pp[2] = {p[ax], p[ay]};
   int u = s;
   for (int step = 0; step < step_limit; ++step) {
@@ -333,10 +323,9 @@ GDR_HD_INLINE void make_subface_candidate(const TetView& m, int s, unsigned id, 
         if (origin >= 0) m3d::protect_tet(m.tflag, origin);
         return;
       }
-      if (!plane) {
+      if (bends) {
         // A merged facet bends: the point goes on the plane of the subface it lies in,
         // moved along the walk's projection axis so that it stays inside that subface.
-        const int drop = 3 - ax - ay;
         const double* a = pt(m, v[0]);
         double u1[3], u2[3], n[3];
         for (int k = 0; k < 3; ++k) {
