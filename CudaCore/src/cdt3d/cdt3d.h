@@ -33,6 +33,8 @@ struct Plc {
   std::vector<std::array<int, 2>> segments;      // every edge that must stay an edge: facet
                                                  // boundaries, edges of 3+ triangles, and the
                                                  // input's own segments (PLC point ids)
+  std::vector<unsigned char> segment_flat;       // per segment: its two triangles meet within
+                                                 // 10 degrees of flat
   std::vector<Point3> holes;
   std::vector<RegionSeed> regions;
   // Cells (empty when the surface need not be closed). Front is the side where the

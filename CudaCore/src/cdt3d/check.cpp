@@ -28,6 +28,7 @@ std::string list_items(const std::vector<std::string>& items, long long total) {
 namespace {
 
 constexpr int kShown = 5;  // items named in a message
+constexpr double kNearlyFlat = 10.0;  // degrees: Plc::segment_flat
 
 std::string str(long long v) { return std::to_string(v); }
 
@@ -396,6 +397,21 @@ void make_segments(const Surface& s, const EdgeTable& edges, const std::vector<i
                     ". Segments inside facets or free in the volume are not supported yet");
   std::sort(plc.segments.begin(), plc.segments.end());
   plc.segments.erase(std::unique(plc.segments.begin(), plc.segments.end()), plc.segments.end());
+  // Nearly flat segments: two triangles meeting within kNearlyFlat degrees of flat.
+  const double cos_flat = std::cos(kNearlyFlat * 3.14159265358979323846 / 180.0);
+  const auto& P = plc.points;
+  plc.segment_flat.assign(plc.segments.size(), 0);
+  for (std::size_t g = 0; g < plc.segments.size(); ++g) {
+    const auto it = std::lower_bound(edges.edge.begin(), edges.edge.end(), plc.segments[g]);
+    const int k = static_cast<int>(it - edges.edge.begin());
+    if (it == edges.edge.end() || *it != plc.segments[g] || edges.count(k) != 2) continue;
+    const int a = plc.segments[g][0], b = plc.segments[g][1];
+    const auto& v1 = plc.triangles[edges.tri[edges.start[k]]];
+    const auto& v2 = plc.triangles[edges.tri[edges.start[k] + 1]];
+    const int c = v1[0] + v1[1] + v1[2] - a - b, d = v2[0] + v2[1] + v2[2] - a - b;
+    const auto n1 = normal_of(P[a], P[b], P[c]), n2 = normal_of(P[a], P[b], P[d]);
+    plc.segment_flat[g] = -dot3(n1, n2) >= cos_flat * std::sqrt(dot3(n1, n1) * dot3(n2, n2));
+  }
 }
 
 }  // namespace

@@ -761,7 +761,7 @@ struct WritePoints {
     m.pfacet[p] = c.kind == kFacetSplit ? m.sfacet[c.sub] : -1;
     // On a sharp segment the protecting ball's radius runs linearly between the ends.
     float r = 0;
-    if (c.kind == kSegmentSplit && m.pseg[p] >= 0 && m.sharp[m.pseg[p]]) {
+    if (c.kind == kSegmentSplit && m.pseg[p] >= 0 && (m.sharp[m.pseg[p]] & kSharp)) {
       const float ra = m.prad[c.a], rb = m.prad[c.b];
       if (ra > 0 && rb > 0) {
         const double f = sqrt(dist2(pt(m, c.a), c.p) / dist2(pt(m, c.a), pt(m, c.b)));

@@ -8,6 +8,8 @@ namespace gdr::m3d {
 
 // Per-point types (same values as gdr::PointType).
 enum : std::uint8_t { kInputPoint = 0, kSegmentPoint = 1, kFreePoint = 2, kFacetPoint = 3 };
+// HostTetMesh::sharp bits.
+enum : std::uint8_t { kSharp = 1, kNearlyFlat = 2 };
 
 struct HostTetMesh {
   std::vector<double> xyz;          // 3 per point; the input points first, in input order
@@ -37,8 +39,9 @@ struct HostTetMesh {
   int input_points = 0;             // points [0, input_points) are the input's
 
   // Sharp features, found by the refinement (qm3d/features.h) and empty until then: per
-  // segment, whether two facets meet there at a small dihedral angle; per point, the radius
-  // of its protecting ball (0: none).
+  // segment, bit kSharp when two facets meet there at a small dihedral angle (or its splits
+  // kept failing: qm3d's blocking), bit kNearlyFlat when its facets meet nearly flat; per
+  // point, the radius of its protecting ball (0: none).
   std::vector<std::uint8_t> sharp;
   std::vector<float> prad;
 

@@ -371,7 +371,7 @@ GDR_HD_INLINE bool facet_bends(const TetView& m, int f) { return m.fplane && m.f
 // Is the subsegment ab on a sharp segment (where facets meet at a small angle)?
 GDR_HD_INLINE bool is_sharp_subseg(const TetView& m, int a, int b) {
   const int s = segment_of(m, a, b);
-  return s >= 0 && m.sharp[s];
+  return s >= 0 && (m.sharp[s] & kSharp);
 }
 
 // Orientation of the point p against face f of t: > 0 when p lies on the inner side (the

@@ -490,7 +490,10 @@ struct Engine {
 
   // A subsegment whose split point sees no star, iteration after iteration, lies next to a
   // nearly coplanar facet that the point sees from behind (a scanned surface, where every
-  // edge is a segment; TetGen flips there). Whatever waits on that split would wait for ever,
+  // edge is a segment; TetGen flips there). Only segments whose facets meet nearly flat
+  // (kNearlyFlat) are blocked: elsewhere, as between the facets of a CAD part, such failures
+  // pass once the mesh around is refined (thingi10k_288351 kept 1.3% of its volume bad when
+  // any segment could be blocked). Whatever waits on that split would wait for ever,
   // and refinement around it cascades: the scanned boat at B = 1.4 inserted 140k of its 200k
   // points after its bad volume had stopped falling. After kBlockAfter such failures the
   // segment is treated as sharp (mesh3d.h is_sharp_subseg): it is split no more, and what
@@ -512,8 +515,8 @@ struct Engine {
     Ops::for_each(ns, [=] GDR_HD(long long j) {
       if (cs[j].kind != m3d::kSegmentSplit || (fl[j] != m3d::kFailStar && fl[j] != m3d::kFailDelaunay)) return;
       const int g = m3d::segment_of(mv, cs[j].a, cs[j].b);
-      if (g >= 0 && exec::atomic_add(&nf[g], 1) + 1 == kBlockAfter) {
-        sharp[g] = 1;
+      if (g >= 0 && (sharp[g] & m3d::kNearlyFlat) && exec::atomic_add(&nf[g], 1) + 1 == kBlockAfter) {
+        sharp[g] |= m3d::kSharp;
         exec::atomic_add(blocked, 1);
       }
     });

@@ -190,6 +190,8 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
   st.cdt_steiner_points = mesh.points() - static_cast<long long>(plc.points.size()) - st.interior_seeds;
   if (aborted()) throw Error(Status::Aborted, "aborted by the caller");
   qm3d::find_sharp_features(mesh, 65.0, strategies.acute_vertices ? 60.0 : 0.0);
+  for (std::size_t g = 0; g < plc.segment_flat.size() && g < mesh.sharp.size(); ++g)
+    if (plc.segment_flat[g]) mesh.sharp[g] |= m3d::kNearlyFlat;
 
   const std::size_t estimated = estimate_tets(mesh, plc.volume, smallest_volume_bound(options, input));
   st.backend_used = resolve_backend(options.backend, estimated, gpu_min_tets(options));

@@ -254,6 +254,11 @@ TEST(CheckSurface, NearlyFlatTrianglesMergeWithinTheCoplanarAngle) {
   EXPECT_EQ(exact.facet_origin.size(), 5u + 14u);
   EXPECT_EQ(merged.facet_origin.size(), 6u);
   EXPECT_EQ(exact.segments.size(), merged.segments.size() + 13u);  // the fan's other inner edges
+  // Those 13 segments of the exact PLC are nearly flat; the cube's edges are not.
+  int flat = 0;
+  for (unsigned char f : exact.segment_flat) flat += f;
+  EXPECT_EQ(flat, 13);
+  for (unsigned char f : merged.segment_flat) EXPECT_FALSE(f);
   int bent = 0;
   for (unsigned char planar : merged.facet_planar) bent += !planar;
   EXPECT_EQ(bent, 1);
