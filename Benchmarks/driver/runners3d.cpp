@@ -210,7 +210,7 @@ Result run_gdr_tet(const Case& c, Inputs& inputs, const TetBounds& b, bool valid
   gdr::ValidateOptions vo;
   vo.max_radius_edge = b.radius_edge;
   vo.check_delaunay = o.sliver_angle == 0;  // smoothing moves points off Delaunay
-  if (o.coplanar_angle > 0) vo.facet_bend_deg = 2 * gdr::kMergedFacetCone;
+  if (o.coplanar_angle > 0) vo.facet_bend_deg = gdr::kMergedFacetBend;
   const auto t0 = std::chrono::steady_clock::now();
   const gdr::ValidationReport report = gdr::validate_tetmesh(kept.mesh, &surface, vo);
   std::fprintf(stderr, "    validated in %.2f s: %s\n", seconds_since(t0), report.valid ? "valid" : "INVALID");

@@ -402,8 +402,7 @@ int mesh_tet(const ArgsTet& a, bool& written) {
     ValidateOptions vo;
     vo.max_radius_edge = a.options.radius_edge_ratio;
     vo.check_delaunay = a.options.sliver_angle == 0;  // smoothing moves points off Delaunay
-    // Two triangles of a merged facet each lie within the cone of its first one.
-    if (a.options.coplanar_angle > 0) vo.facet_bend_deg = 2 * kMergedFacetCone;
+    if (a.options.coplanar_angle > 0) vo.facet_bend_deg = kMergedFacetBend;
     report = validate_tetmesh(result.mesh, &input, vo);
     t.check = since(t0);
     stop_if_interrupted();

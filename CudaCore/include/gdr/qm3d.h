@@ -14,8 +14,10 @@
 namespace gdr {
 
 // How far (degrees) the triangles of one facet merged by coplanar_angle may turn from its
-// first triangle's plane.
+// first triangle's plane; two of them, and so a subface from the input triangles it covers,
+// up to twice that (what validation allows: ValidateOptions::facet_bend_deg).
 constexpr double kMergedFacetCone = 10.0;
+constexpr double kMergedFacetBend = 2 * kMergedFacetCone;
 
 struct QualityTetOptions {
   // Largest radius-edge ratio allowed (TetGen's -q B): at least 1.0; 0 turns it off.

@@ -58,6 +58,27 @@ double volume_of(const gdr::TetMesh& m) {
   return v;
 }
 
+// A surface of ../shared/data/surfaces; false when that folder is absent (the test skips).
+bool read_data_surface(const char* name, gdr::Surface& s) {
+  const auto path = std::filesystem::path(GDR_SHARED_DATA_DIR) / "surfaces" / name;
+  if (!std::filesystem::exists(path)) return false;
+  s = gdr::io::read_surface(path.string());
+  return true;
+}
+
+// quality_tet_mesh at radius-edge B on `backend`, its result checked by the validator.
+gdr::QualityTetResult mesh_validated(const gdr::Surface& s, double B, gdr::Backend backend) {
+  gdr::QualityTetOptions o;
+  o.radius_edge_ratio = B;
+  o.backend = backend;
+  gdr::QualityTetResult r = gdr::quality_tet_mesh(s, o, {});
+  const gdr::ValidationReport rep = gdr::validate_tetmesh(r.mesh, &s, {});
+  EXPECT_TRUE(rep.valid) << rep.summary();
+  return r;
+}
+
+const char* backend_name(gdr::Backend b) { return b == gdr::Backend::Gpu ? "GPU" : "CPU"; }
+
 gdr::qm3d::EngineParams params(double B, double max_volume) {
   gdr::qm3d::EngineParams p;
   p.criteria.max_radius_edge2 = B * B;
@@ -289,7 +310,7 @@ TEST(QualityTetMesh, NearlyFlatFacetsMergeIntoFewerPoints) {
     const gdr::ValidationReport rep_exact = gdr::validate_tetmesh(exact.mesh, &s, {});
     EXPECT_TRUE(rep_exact.valid) << rep_exact.summary();
     gdr::ValidateOptions bent;
-    bent.facet_bend_deg = 2 * gdr::kMergedFacetCone;
+    bent.facet_bend_deg = gdr::kMergedFacetBend;
     const gdr::ValidationReport rep_merged = gdr::validate_tetmesh(merged.mesh, &s, bent);
     EXPECT_TRUE(rep_merged.valid) << rep_merged.summary();
     EXPECT_FALSE(gdr::validate_tetmesh(merged.mesh, &s, {}).valid);  // the fan is not kept
@@ -297,7 +318,7 @@ TEST(QualityTetMesh, NearlyFlatFacetsMergeIntoFewerPoints) {
     EXPECT_NEAR(volume_of(merged.mesh), v, 4e-5);
     EXPECT_LT(merged.stats.output_points, exact.stats.output_points);
     std::printf("rough-top cube, B = 1.4, %s: %lld points kept exactly, %lld merged (volume %.9f, %.9f)\n",
-                b == gdr::Backend::Gpu ? "GPU" : "CPU", exact.stats.output_points, merged.stats.output_points, v,
+                backend_name(b), exact.stats.output_points, merged.stats.output_points, v,
                 volume_of(merged.mesh));
   }
 }
@@ -308,25 +329,19 @@ TEST(QualityTetMesh, NearlyFlatFacetsMergeIntoFewerPoints) {
 // everywhere (without them refinement stopped with 8.8-9.3% of the volume bad at B = 2, and
 // 12-36% at B = 1.4; 2 CPU threads, 2026-11-24). The mesh validates.
 TEST(QualityTetMesh, ScannedSurfaceIsRefinedThroughout) {
-  const auto path = std::filesystem::path(GDR_SHARED_DATA_DIR) / "surfaces" / "penguin_hr.off";
-  if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is absent (no ../shared here)";
-  const gdr::Surface s = gdr::io::read_surface(path.string());
+  gdr::Surface s;
+  if (!read_data_surface("penguin_hr.off", s)) GTEST_SKIP() << "penguin_hr.off is absent (no ../shared here)";
   for (gdr::Backend b : backends()) {
-    gdr::QualityTetOptions o;
-    o.radius_edge_ratio = 2;
-    o.backend = b;
-    const gdr::QualityTetResult r = gdr::quality_tet_mesh(s, o, {});
+    const gdr::QualityTetResult r = mesh_validated(s, 2, b);
     EXPECT_GT(r.stats.interior_seeds, 0);
     EXPECT_LT(r.stats.bad_volume_percent, 2.0);
     // Its nearly coplanar triangles leave some subsegment splits failing for good: those
     // segments are blocked (a few hundred) rather than waited on for ever.
     EXPECT_GT(r.stats.blocked_segments, 0);
     EXPECT_FALSE(r.stats.steiner_cap_reached);
-    const gdr::ValidationReport rep = gdr::validate_tetmesh(r.mesh, &s, {});
-    EXPECT_TRUE(rep.valid) << rep.summary();
     std::printf("penguin_hr, B = 2, %s: %lld tetrahedra, %lld seeds, %lld blocked segments, %.3f%% of the volume bad\n",
-                b == gdr::Backend::Gpu ? "GPU" : "CPU", r.stats.output_tets, r.stats.interior_seeds,
-                r.stats.blocked_segments, r.stats.bad_volume_percent);
+                backend_name(b), r.stats.output_tets, r.stats.interior_seeds, r.stats.blocked_segments,
+                r.stats.bad_volume_percent);
   }
 }
 
@@ -336,21 +351,15 @@ TEST(QualityTetMesh, ScannedSurfaceIsRefinedThroughout) {
 // volume bad), 2 CPU threads, 2026-11-24. With protecting balls at the vertices where two
 // segments meet below 60 degrees it ends near 140k, no worse in bad volume. Valid.
 TEST(QualityTetMesh, ScannedSurfaceAtLowRadiusEdgeDoesNotCascade) {
-  const auto path = std::filesystem::path(GDR_SHARED_DATA_DIR) / "surfaces" / "penguin_hr.off";
-  if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is absent (no ../shared here)";
-  const gdr::Surface s = gdr::io::read_surface(path.string());
+  gdr::Surface s;
+  if (!read_data_surface("penguin_hr.off", s)) GTEST_SKIP() << "penguin_hr.off is absent (no ../shared here)";
   for (gdr::Backend b : backends()) {
-    gdr::QualityTetOptions o;
-    o.radius_edge_ratio = 1.4;
-    o.backend = b;
-    const gdr::QualityTetResult r = gdr::quality_tet_mesh(s, o, {});
+    const gdr::QualityTetResult r = mesh_validated(s, 1.4, b);
     EXPECT_LT(r.stats.output_tets, 300000);
     EXPECT_LT(r.stats.bad_volume_percent, 1.0);
     EXPECT_GT(r.stats.protected_bad_tets, 0);
-    const gdr::ValidationReport rep = gdr::validate_tetmesh(r.mesh, &s, {});
-    EXPECT_TRUE(rep.valid) << rep.summary();
-    std::printf("penguin_hr, B = 1.4, %s: %lld tetrahedra, %.3f%% of the volume bad\n",
-                b == gdr::Backend::Gpu ? "GPU" : "CPU", r.stats.output_tets, r.stats.bad_volume_percent);
+    std::printf("penguin_hr, B = 1.4, %s: %lld tetrahedra, %.3f%% of the volume bad\n", backend_name(b),
+                r.stats.output_tets, r.stats.bad_volume_percent);
   }
 }
 
@@ -359,18 +368,12 @@ TEST(QualityTetMesh, ScannedSurfaceAtLowRadiusEdgeDoesNotCascade) {
 // (only meant for nearly flat ones, beside which the failures never pass) left 1.3% of the
 // volume bad at B = 1.4; now the bound is met everywhere.
 TEST(QualityTetMesh, CadPartSegmentsAreNotBlocked) {
-  const auto path = std::filesystem::path(GDR_SHARED_DATA_DIR) / "surfaces" / "thingi10k_288351.off";
-  if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is absent (no ../shared here)";
-  const gdr::Surface s = gdr::io::read_surface(path.string());
+  gdr::Surface s;
+  if (!read_data_surface("thingi10k_288351.off", s)) GTEST_SKIP() << "thingi10k_288351.off is absent";
   for (gdr::Backend b : backends()) {
-    gdr::QualityTetOptions o;
-    o.radius_edge_ratio = 1.4;
-    o.backend = b;
-    const gdr::QualityTetResult r = gdr::quality_tet_mesh(s, o, {});
+    const gdr::QualityTetResult r = mesh_validated(s, 1.4, b);
     EXPECT_EQ(r.stats.blocked_segments, 0);
     EXPECT_LT(r.stats.bad_volume_percent, 0.1);
-    const gdr::ValidationReport rep = gdr::validate_tetmesh(r.mesh, &s, {});
-    EXPECT_TRUE(rep.valid) << rep.summary();
   }
 }
 
