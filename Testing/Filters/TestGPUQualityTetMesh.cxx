@@ -273,7 +273,9 @@ void CheckOutputs(vtkGPUQualityTetMesh* filter)
   CHECK(FieldValue(out, "TotalSeconds") >= 0);
   const double total = Sum(volume);
   CHECK(std::fabs(FieldValue(out, "Volume") - total) <= 1e-9 * total);
-  CHECK(std::fabs(FieldValue(out, "InputVolume") - total) <= 1e-9 * total);
+  // Merged nearly flat facets (CoplanarAngle) let the boundary bend a little off the input.
+  const double inputTolerance = filter->GetCoplanarAngle() > 0 ? 1e-4 : 1e-9;
+  CHECK(std::fabs(FieldValue(out, "InputVolume") - total) <= inputTolerance * total);
   CHECK(std::fabs(FieldValue(out, "MinimumDihedralAngleReached") - lo->GetRange()[0]) < 1e-4);
 }
 

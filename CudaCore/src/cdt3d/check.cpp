@@ -276,7 +276,8 @@ std::array<double, 3> unit_normal(const Plc& plc, int t) {
 // with options.coplanar_angle > 0, these planar facets are merged across edges where they
 // meet within that angle of flat (TetGen's facet separation tolerance), as long as every
 // triangle of a merged facet stays within options.merge_cone of its first triangle's plane
-// (so one projection serves the whole facet) and the input's facet ids agree.
+// (so one projection serves the whole facet). A merged facet reports the input facet id of
+// its first triangle (every polygon of polydata is a facet of its own: ids never stop it).
 void make_facets(const Surface& s, const EdgeTable& edges, const CheckOptions& options, Plc& plc) {
   const int nt = static_cast<int>(plc.triangles.size());
   const auto& P = plc.points;
@@ -327,7 +328,7 @@ void make_facets(const Surface& s, const EdgeTable& edges, const CheckOptions& o
   for (int k : flat_edges) {
     const int f1 = plc.triangle_facet[edges.tri[edges.start[k]]];
     const int f2 = plc.triangle_facet[edges.tri[edges.start[k] + 1]];
-    if (f1 == f2 || (!s.triangle_facet.empty() && plc.facet_origin[f1] != plc.facet_origin[f2])) continue;
+    if (f1 == f2) continue;
     across[f1].push_back(f2);
     across[f2].push_back(f1);
   }
