@@ -195,8 +195,9 @@ void print_summary(const ArgsTet& a, const Surface& input, const QualityTetResul
   if (s.stalled) info.row({"", "stalled: bad elements remain that no point could fix"});
   if (s.blocked_segments > 0)
     info.row({"", with_commas(s.blocked_segments) + " input segments left unsplit: their splits kept failing "
-                                                      "(a nearly coplanar facet beside them; --coplanar-angle 0.1 merges "
-                                                      "such facets, as TetGen does)"});
+                                                      "(a nearly coplanar facet beside them" +
+                      (o.coplanar_angle > 0 ? std::string(")")
+                                            : std::string("; --coplanar-angle 0.1 merges such facets, as TetGen does)"))});
   info.row({"backend", backend_line(s.backend_used, s.device_name)});
   info.row({"peak device memory", s.backend_used == Backend::Gpu ? bytes(s.peak_device_bytes)
                                                                   : "- (CPU backend)"});
