@@ -67,7 +67,9 @@ Criteria (CGAL Mesh_3's names; sizes default to fractions of the bounding box di
                            as chains of surface edges, their corners as vertices (default 0:
                            none; 30 suits CAD parts). Next to features at small angles, the
                            triangles and tetrahedra that cannot meet the criteria are left
-                           and counted as bad
+                           and counted as bad; where the surface cuts across a sharp edge
+                           (at corners, and at acute creases sampled unevenly on its two
+                           sides) the subsegments off it are counted and warned about
   --surface-only           mesh the surface only, even when it is closed
   --no-manifold            do not refine where the surface is not a 2-manifold (CGAL's
                            non_manifold()). By default, once the criteria are met, the
@@ -294,7 +296,10 @@ void print_summary(const ArgsRdt& a, const RestrictedDelaunayResult& r, const Re
   if (s.feature_edges > 0)
     info.row({"features", with_commas(s.feature_edges) + " input edges, " + with_commas(s.corners) + " corners (feature angle " +
                               fixed(s.feature_angle, 1) + " deg); " + with_commas(s.feature_points) +
-                              " output points on them"});
+                              " output points on them" +
+                              (s.features_off_surface > 0
+                                   ? "; " + with_commas(s.features_off_surface) + " subsegments off the surface"
+                                   : std::string())});
   if (s.steiner_cap_reached) info.row({"", "stopped at the cap of " + with_commas(s.steiner_cap)});
   if (s.stalled) info.row({"", "stalled: bad elements remain that no point could fix"});
   if (s.manifold_splits > 0 || s.non_manifold_facets > 0)
@@ -402,6 +407,7 @@ void write_stats_json(const ArgsRdt& a, const RestrictedDelaunayResult& r, const
   j.field("facets_left_out", s.facets_left_out);
   j.field("manifold_splits", s.manifold_splits);
   j.field("non_manifold_facets", s.non_manifold_facets);
+  j.field("features_off_surface", s.features_off_surface);
   j.field("manifold_min_size", s.manifold_min_size);
   j.field("min_facet_angle_deg", s.min_facet_angle_deg);
   j.field("max_facet_size", s.max_facet_size);

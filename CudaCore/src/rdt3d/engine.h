@@ -38,6 +38,7 @@ struct EngineResult {
   bool stalled = false;
   long long manifold_splits = 0;  // facets split by the manifold criterion
   long long non_manifold = 0;     // surface facets at a non-manifold edge or vertex at the end
+  long long lost_features = 0;    // feature subsegments that no surface facet holds, at the end
   m3d::SmoothResult slivers;
   std::size_t peak_bytes = 0;
   std::vector<PhaseTime> phases;
@@ -166,6 +167,14 @@ struct Engine {
     res.inserted = core.res.inserted;
     res.cap_reached = core.res.cap_reached;
     res.non_manifold = non_manifold(false);
+    if (features) {
+      counts.resize_discard(1);
+      counts.zero();
+      Ops::for_each(dm.ntet, CountLostFeatures{dm.view(), params.criteria, counts.data()});
+      int n = 0;
+      counts.download(&n, 1);
+      res.lost_features = n;
+    }
     if (params.sliver_sin > 0 && params.criteria.volume) {
       if (cb.abort && cb.abort()) throw Error(Status::Aborted, "refinement aborted by the caller");
       core.clock.restart();

@@ -664,4 +664,31 @@ struct MarkNonManifold {
   }
 };
 
+// Sharp features the surface does not follow: feature subsegments that no surface facet
+// holds (next to an acute crease sampled unevenly on its two sides, a Voronoi edge cuts both
+// sheets off the subsegment and no facet there bounds the volume; CGAL Mesh_3 avoids it with
+// protecting balls). Counted once each, from the lowest-numbered tetrahedron around it.
+struct CountLostFeatures {
+  TetView m;
+  Criteria c;
+  int* count;
+  GDR_HD void operator()(long long i) const {
+    const int t = static_cast<int>(i), flags = m.tflag[t];
+    if ((flags & m3d::kDead) || !(flags & m3d::kSegBits)) return;
+    for (int e = 0; e < 6; ++e) {
+      if (!(flags & (m3d::kSeg0 << e))) continue;
+      const int a = m.tv[4 * t + m3d::edge_corner(e, 0)], b = m.tv[4 * t + m3d::edge_corner(e, 1)];
+      int f = 0;  // a face of t that holds ab
+      while (m.tv[4 * t + f] == a || m.tv[4 * t + f] == b) ++f;
+      int facets = 0, lowest = t;
+      auto visit = [&](int u, int g) {
+        facets += surface_facet(m, c, u, g);
+        lowest = u < lowest ? u : lowest;
+        return false;
+      };
+      if (turn_around_edge(m, t, f, a, b, visit) == 0 && lowest == t && facets == 0) exec::atomic_add(count, 1);
+    }
+  }
+};
+
 }  // namespace gdr::rdt3d

@@ -418,6 +418,7 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
   st.steiner_points = er.inserted;
   st.manifold_splits = er.manifold_splits;
   st.non_manifold_facets = er.non_manifold;
+  st.features_off_surface = er.lost_features;
   st.slivers_before = er.slivers.slivers_before;
   st.slivers_after = er.slivers.slivers_after;
   st.sliver_moves = er.slivers.moves;
@@ -431,6 +432,10 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
                                        " (the manifold criterion's smallest) can resolve, or they are next to "
                                        "features at small angles"
                                  : std::string(" (the manifold criterion is off)")));
+  if (st.features_off_surface > 0 && cb.warning)
+    cb.warning(std::to_string(st.features_off_surface) +
+               " feature subsegment(s) are not edges of the surface: it cuts across the sharp edges there "
+               "(next to corners and acute creases)");
   if (aborted()) throw Error(Status::Aborted, "aborted by the caller");
 
   // The output, read off the final triangulation with the engine's own predicates.

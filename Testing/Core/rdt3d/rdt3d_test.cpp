@@ -406,6 +406,26 @@ TEST_P(RestrictedDelaunayOnBackend, CadPartKeepsItsFeatures) {
   EXPECT_NEAR(r.stats.volume, enclosed_volume(s), 1e-6 * enclosed_volume(s));
 }
 
+// Where the surface cuts across a sharp edge (CAD part thingi10k_288351: corners everywhere,
+// crease samples uneven on the two sides), the subsegments it leaves out are counted and
+// warned about: exactly those the validator finds off the surface.
+TEST_P(RestrictedDelaunayOnBackend, FeaturesOffTheSurfaceAreReported) {
+  const std::filesystem::path file = std::filesystem::path(GDR_SHARED_DATA_DIR) / "surfaces" / "thingi10k_288351.off";
+  if (!std::filesystem::exists(file)) GTEST_SKIP() << file << " is absent (no ../shared here)";
+  const Surface s = io::read_surface(file.string());
+  RestrictedDelaunayOptions o = keeping_triangulation(GetParam());
+  o.feature_angle = 30;
+  if (refused_on_gpu(s, o)) return;
+  std::string warnings;
+  Callbacks cb;
+  cb.warning = [&](const std::string& w) { warnings += w + "\n"; };
+  const RestrictedDelaunayResult r = restricted_delaunay_3d(s, o, cb);
+  const ValidationReport f = validate_surface_features(r.mesh.points, r.mesh.subfaces, r.mesh.subsegments, r.features);
+  EXPECT_EQ(static_cast<std::size_t>(r.stats.features_off_surface), f.invalid_subsegments) << f.summary();
+  EXPECT_EQ(r.stats.features_off_surface > 0, warnings.find("not edges of the surface") != std::string::npos)
+      << warnings;
+}
+
 // Tiny and huge coordinates: meshed at a power-of-two scale, so the same mesh comes out
 // (scaled) and every check holds.
 TEST_P(RestrictedDelaunayOnBackend, TinyAndHugeCoordinates) {
