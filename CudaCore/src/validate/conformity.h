@@ -113,11 +113,25 @@ inline std::vector<int> chain_path(const std::vector<std::array<int, 2>>& chain,
   return path;
 }
 
+// How far rounding alone can put a vertex off the segment or plane it was computed on: a
+// few units in the last place of the largest coordinate. Near the origin that is far below
+// any relative tolerance; for a part far from the origin (a scan in map coordinates, 1e5
+// times its size away) the output's own coordinates are that coarse.
+template <class P>
+double coordinate_slack(const std::vector<P>& points) {
+  double m = 0;
+  for (const P& p : points)
+    for (const double v : xyz(p))
+      if (std::isfinite(v)) m = std::max(m, std::fabs(v));
+  return m > 0 ? std::ldexp(64.0, std::ilogb(m) - 52) : 0.0;
+}
+
 // True when a chain of subsegments leads from mesh vertex a to b, every intermediate vertex
-// within `tolerance * |ab|` of segment ab and strictly progressing from a towards b.
+// within `tolerance * |ab| + slack` of segment ab and strictly progressing from a towards b.
+// `slack`: the rounding of the coordinates themselves (coordinate_slack).
 template <class P>
 bool follow_segment(const std::vector<P>& points, const SubsegmentGraph& graph, int a, int b,
-                    double tolerance) {
+                    double tolerance, double slack = 0) {
   const auto pa = xyz(points[a]), pb = xyz(points[b]);
   const double d[3] = {pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]};
   const double len2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
@@ -139,7 +153,8 @@ bool follow_segment(const std::vector<P>& points, const SubsegmentGraph& graph, 
       const double cx = r[1] * d[2] - r[2] * d[1], cy = r[2] * d[0] - r[0] * d[2],
                    cz = r[0] * d[1] - r[1] * d[0];
       // |r x d| / |d| is the distance from the line; compare squares to avoid roots.
-      if (cx * cx + cy * cy + cz * cz > tolerance * tolerance * len2 * len2) continue;
+      const double allowed = tolerance * len2 + slack * std::sqrt(len2);
+      if (cx * cx + cy * cy + cz * cz > allowed * allowed) continue;
       best = w;
       best_t = t;
     }

@@ -142,9 +142,10 @@ ValidationReport validate_surface_features(const std::vector<Point3>& points,
       problems.add("subsegment (" + std::to_string(s[0]) + ", " + std::to_string(s[1]) + ") is not a surface edge");
     }
   const validate::SubsegmentGraph graph(points.size(), subsegments);
+  const double slack = validate::coordinate_slack(points);
   for (std::size_t i = 0; i < features.size(); ++i) {
     const auto& f = features[i];
-    if (in_range(f) && validate::follow_segment(points, graph, f[0], f[1], options.segment_tolerance)) continue;
+    if (in_range(f) && validate::follow_segment(points, graph, f[0], f[1], options.segment_tolerance, slack)) continue;
     ++r.missing_segments;
     problems.add("feature " + std::to_string(i) + " (" + std::to_string(f[0]) + ", " + std::to_string(f[1]) +
                  ") is not a chain of subsegments");

@@ -51,12 +51,12 @@ struct FacetTest {
   V3 e1, e2, n;
   double n2 = 0, plane_tol = 0, area = 0, longest = 0, bend_sin = 0;
   // `bend_deg`: subfaces may turn this far from the triangle (merged near-flat facets).
-  FacetTest(const Point3& pa, const Point3& pb, const Point3& pc, double tolerance, double bend_deg)
+  FacetTest(const Point3& pa, const Point3& pb, const Point3& pc, double tolerance, double slack, double bend_deg)
       : a(pa), e1(sub(pb, pa)), e2(sub(pc, pa)), n(cross(e1, e2)) {
     n2 = dot(n, n);
     area = 0.5 * std::sqrt(n2);
     longest = std::sqrt(std::max({dot(e1, e1), dot(e2, e2), dot(sub(pc, pb), sub(pc, pb))}));
-    plane_tol = tolerance * longest;
+    plane_tol = tolerance * longest + slack;
     bend_sin = std::sin(bend_deg * 3.14159265358979323846 / 180.0);
   }
   // Area shared with the input triangle, in units of the input triangle's area (0 when
@@ -112,6 +112,7 @@ ValidationReport validate_tetmesh(const TetMesh& mesh, const Surface* input,
   ValidationReport r;
   Problems problems{r.problems, options.max_problems};
   const auto& P = mesh.points;
+  const double slack = validate::coordinate_slack(P);
   const auto& T = mesh.tets;
   const std::size_t nv = P.size();
   const std::int64_t nt = static_cast<std::int64_t>(T.size());
@@ -265,7 +266,7 @@ ValidationReport validate_tetmesh(const TetMesh& mesh, const Surface* input,
     for (std::int64_t s = 0; s < static_cast<std::int64_t>(S.size()); ++s) {
       const int a = mesh_vertex(S[s][0]), b = mesh_vertex(S[s][1]);
       if (a < 0 || b < 0) seg_ok[s] = 0;
-      else if (a != b) seg_ok[s] = validate::follow_segment(P, graph, a, b, options.segment_tolerance);
+      else if (a != b) seg_ok[s] = validate::follow_segment(P, graph, a, b, options.segment_tolerance, slack);
     }
     for (std::size_t s = 0; s < S.size(); ++s) {
       if (seg_ok[s]) continue;
@@ -312,7 +313,7 @@ ValidationReport validate_tetmesh(const TetMesh& mesh, const Surface* input,
         facet_ok[k] = 0;
         continue;
       }
-      const FacetTest test(P[a], P[b], P[c], options.segment_tolerance, options.facet_bend_deg);
+      const FacetTest test(P[a], P[b], P[c], options.segment_tolerance, slack, options.facet_bend_deg);
       if (test.area == 0) continue;  // a degenerate input triangle covers nothing
       std::unordered_set<int> seen;
       std::vector<std::pair<int, double>> stack;
