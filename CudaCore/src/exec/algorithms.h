@@ -45,6 +45,29 @@ std::size_t compact_indices(std::size_t n, Pred pred, Buffer<Space, int>& out,
   return total;
 }
 
+// Stable compaction of a buffer into one of exactly the size kept: the elements x with
+// keep(x), in their order; the old storage is freed. `scratch` (resized to n ints, contents
+// lost) holds the offsets. `keep` is a host+device functor of (const T&) -> bool.
+template <class Space, class T, class Keep>
+std::size_t keep_if(Buffer<Space, T>& buf, Keep keep, Buffer<Space, int>& scratch) {
+  const std::size_t n = buf.size();
+  if (n == 0) return 0;
+  scratch.resize_discard(n);
+  int* off = scratch.data();
+  const T* in = buf.data();
+  Ops<Space>::for_each(n, [=] GDR_HD(long long i) { off[i] = keep(in[i]) ? 1 : 0; });
+  const std::size_t total = static_cast<std::size_t>(Ops<Space>::exclusive_scan(off, off, n));
+  Buffer<Space, T> kept(total);
+  T* o = kept.data();
+  const long long last = static_cast<long long>(n) - 1;
+  const int tot = static_cast<int>(total);
+  Ops<Space>::for_each(n, [=] GDR_HD(long long i) {
+    if ((i < last ? off[i + 1] : tot) != off[i]) o[off[i]] = in[i];
+  });
+  buf.swap(kept);
+  return total;
+}
+
 struct ExpandListResult {
   int rounds = 0;
   std::size_t size = 0;           // tuples in H at the end (all windows)
