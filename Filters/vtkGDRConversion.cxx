@@ -549,6 +549,7 @@ void vtkGDRConversion::AddStats(const gdr::QualityTetStats& stats, vtkFieldData*
   AddValue<vtkIdTypeArray>(fd, "BadTetrahedra", static_cast<vtkIdType>(stats.bad_tets));
   AddValue<vtkIdTypeArray>(
     fd, "ProtectedBadTetrahedra", static_cast<vtkIdType>(stats.protected_bad_tets));
+  AddValue<vtkIdTypeArray>(fd, "SliversLeft", static_cast<vtkIdType>(stats.slivers_left));
   AddValue<vtkDoubleArray>(fd, "BadVolumePercent", stats.bad_volume_percent);
   AddValue<vtkDoubleArray>(fd, "MinimumDihedralAngleReached", stats.min_dihedral_deg);
   AddValue<vtkDoubleArray>(fd, "MaximumDihedralAngleReached", stats.max_dihedral_deg);

@@ -56,7 +56,9 @@ Quality and size:
   --radius-edge B         largest circumradius-to-shortest-edge ratio of a tetrahedron
                           (TetGen's -q B; default 2.0, at least 1.0; 0 turns it off)
   --min-dihedral DEG      smallest dihedral angle allowed (TetGen's -q B/DEG; default off,
-                          at most 60)
+                          at most 60). Not guaranteed: once the mesh has grown fourfold,
+                          slivers whose circumcentres would only make smaller ones are
+                          left, and counted (--sliver-angle raises many of them)
   --max-volume V          largest tetrahedron volume (TetGen's -a V; default: no limit)
   --sliver-angle DEG      after refinement, move interior Steiner points to raise dihedral
                           angles below DEG (and above 180 - DEG) as TetGen's -O smoothing
@@ -210,8 +212,13 @@ void print_summary(const ArgsTet& a, const Surface& input, const QualityTetResul
                                      bound(o.radius_edge_ratio, "") + ")"});
   info.row({"bad tetrahedra", with_commas(s.bad_tets) + ", " + fixed(s.bad_volume_percent, 4) +
                                   "% of the volume"});
-  if (s.protected_bad_tets > 0)
-    info.row({"", with_commas(s.protected_bad_tets) + " of them protected (next to small input angles)"});
+  if (s.protected_bad_tets > s.slivers_left)
+    info.row({"", with_commas(s.protected_bad_tets - s.slivers_left) +
+                      " of them protected (next to small input angles)"});
+  if (s.slivers_left > 0)
+    info.row({"", with_commas(s.slivers_left) +
+                      " of them slivers left under the dihedral bound (their circumcentres would only make "
+                      "smaller ones; --sliver-angle moves points to raise them)"});
   info.row({"volume", fixed(s.volume, 6) + " (input " + fixed(s.input_volume, 6) + ")"});
   if (report) info.row({"check", (report->valid ? "valid: " : "INVALID: ") + report->summary()});
   info.print(std::cout);
@@ -277,6 +284,7 @@ void write_stats_json(const std::string& path, const ArgsTet& a, const QualityTe
   j.field("output_subfaces", s.output_subfaces);
   j.field("bad_tets", s.bad_tets);
   j.field("protected_bad_tets", s.protected_bad_tets);
+  j.field("slivers_left", s.slivers_left);
   j.field("bad_volume_percent", s.bad_volume_percent);
   j.field("steiner_cap", s.steiner_cap);
   j.field("automatic_steiner_cap", s.automatic_steiner_cap);

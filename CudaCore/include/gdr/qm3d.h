@@ -63,7 +63,11 @@ struct QualityTetStats {
   long long output_tets = 0;
   long long output_subfaces = 0;
   long long bad_tets = 0;               // left above the bounds
-  long long protected_bad_tets = 0;     // of those: next to small input angles (unfixable)
+  long long protected_bad_tets = 0;     // of those: left as they are (unfixable)
+  // Of the protected: slivers under MinDihedralAngle whose circumradius is below their
+  // shortest edge, left once the mesh had grown fourfold (splitting them would only make
+  // smaller ones: a cascade); the others lie next to small input angles.
+  long long slivers_left = 0;
   double bad_volume_percent = 0;
   long long steiner_cap = -1;           // the cap in effect (-1: none)
   bool automatic_steiner_cap = false;

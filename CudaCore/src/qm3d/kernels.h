@@ -21,6 +21,10 @@ struct Criteria {
   double max_volume6 = 0;       // 6 x the volume bound; 0 = off
   double cos_min_dihedral = 0;  // cos of the dihedral bound; used when dihedral is on
   int dihedral = 0;             // 1: a dihedral angle below the bound makes a tetrahedron bad
+  // Set by the engine (Engine::compute_splitting_points): a tetrahedron bad by the dihedral
+  // bound alone is split only if its squared circumradius is at least this times its squared
+  // shortest edge.
+  double sliver_split_ratio2 = 0;
   int step_limit = 4096;        // point-location walk bound (dropped beyond it)
   // Volume bounds of regions (by region attribute; TetGen's regional -a), kept by value so
   // that kernels on either backend read them without device buffers.
@@ -403,6 +407,12 @@ struct ComputeSplittingPoints {
     const double* p = s.center;
     const int klass = classify_tet(m, t, c, s);
     const bool make_room = klass == kGood || (m.tflag[t] & m3d::kMakeRoom);
+    // (A tetrahedron bad with R < lmin meets the radius-edge bound, B >= 1: it is bad by
+    // the dihedral bound alone.)
+    if (klass == kBad && !make_room && s.r2 < c.sliver_split_ratio2 * s.lmin2) {
+      m3d::protect_tet(m.tflag, t);
+      return;
+    }
     if (klass == kBad && !make_room)
       for (int k = 0; k < 4; ++k)
         if (m3d::in_protecting_ball(m, m.tv[4 * t + k], p)) {  // next to a sharp feature

@@ -294,7 +294,11 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
   st.output_subfaces = static_cast<long long>(nsf);
   st.steiner_points = np - static_cast<long long>(plc.points.size());
   st.bad_tets = static_cast<long long>(out.bad.size());
-  for (const int code : out.bad) st.protected_bad_tets += code & 1;
+  for (const int code : out.bad) {
+    if (!(code & 1)) continue;
+    ++st.protected_bad_tets;
+    st.slivers_left += options.min_dihedral_angle > 0 && result.radius_edge[code >> 1] < 1.0f;
+  }
   st.bad_volume_percent = total > 0 ? 100.0 * bad_volume / total : 0.0;
   st.volume = total;
   st.min_dihedral_deg = q.min_dihedral_deg;
