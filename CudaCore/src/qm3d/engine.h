@@ -125,6 +125,10 @@ struct Engine {
 
   Engine(const EngineParams& p, const Callbacks& c) : params(p), cb(c) {}
 
+  void check_abort() const {
+    if (cb.abort && cb.abort()) throw Error(Status::Aborted, "refinement aborted by the caller");
+  }
+
   void run(const m3d::HostTetMesh& host, MeshResult& out) {
     exec::memory_counter<Space>().peak = exec::memory_counter<Space>().current;
     const std::size_t mem_base = exec::memory_counter<Space>().current;
@@ -136,7 +140,7 @@ struct Engine {
     clock.template stop<Space>("upload");
     int idle = 0;
     for (int iter = 0; iter < params.max_iterations; ++iter) {
-      if (cb.abort && cb.abort()) throw Error(Status::Aborted, "refinement aborted by the caller");
+      check_abort();
       clock.restart();
       const auto t0 = std::chrono::steady_clock::now();
       const std::vector<PhaseTime> phases_before = trace ? res.phases : std::vector<PhaseTime>{};
@@ -146,6 +150,7 @@ struct Engine {
       compute_splitting_points(nl, iter);               // line 6
       const std::size_t ns = filter(nl);                // line 7 (S1, S3)
       grow_cavities(ns);                                // line 8 (S2, S3, S5)
+      check_abort();  // an iteration of millions of points takes seconds on a few CPU threads
       const long long won = verify_and_number(ns);
       if (params.strategies.blocking) block_failing_segments(ns);
       stagnant = !stagnant && won * 50 < static_cast<long long>(ns);

@@ -115,7 +115,7 @@ struct Engine {
     int idle = 0;
     std::size_t backlog = ~std::size_t(0);
     for (int iter = 0; iter < params.insertion.max_iterations; ++iter) {
-      if (cb.abort && cb.abort()) throw Error(Status::Aborted, "refinement aborted by the caller");
+      core.check_abort();
       core.clock.restart();
       std::size_t nl = collect();  // line 4: bad facets and bad tetrahedra, one list
       // The manifold criterion, once every facet and cell meets the others (as CGAL's).
@@ -130,6 +130,7 @@ struct Engine {
       compute_splitting_points(nl, iter);     // line 5
       const std::size_t ns = core.filter(nl);  // S3
       core.grow_cavities(ns);                 // lines 6-7 (S2, S5)
+      core.check_abort();
       refuse_cavities();
       const long long won = core.verify_and_number(ns);
       stagnant = !stagnant && won * 50 < static_cast<long long>(ns);
@@ -176,7 +177,7 @@ struct Engine {
       res.lost_features = n;
     }
     if (params.sliver_sin > 0 && params.criteria.volume) {
-      if (cb.abort && cb.abort()) throw Error(Status::Aborted, "refinement aborted by the caller");
+      core.check_abort();
       core.clock.restart();
       out.xyz_refined.resize(3 * std::size_t(dm.npts));
       dm.xyz.download(out.xyz_refined.data(), out.xyz_refined.size());
