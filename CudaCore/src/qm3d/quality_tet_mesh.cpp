@@ -311,7 +311,10 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
                "often next to small input angles); " + std::to_string(st.bad_tets) +
                (st.bad_tets == 1 ? " tetrahedron (" : " tetrahedra (") + share +
                " of the volume) " + (st.bad_tets == 1 ? "remains" : "remain") +
-               " above the bounds, marked by IsBad");
+               " above the bounds, marked by IsBad" +
+               (st.slivers_left > 0 ? "; " + std::to_string(st.slivers_left) +
+                                          " of them slivers under the dihedral bound (sliver removal, --sliver-angle or SliverAngle, raises many)"
+                                    : std::string()));
   }
   st.output_seconds = since(t_output);
   st.total_seconds = since(t_start);
