@@ -60,8 +60,8 @@ Criteria (CGAL Mesh_3's names; sizes default to fractions of the bounding box di
                            below DEG (and above 180 - DEG), keeping --cell-radius-edge and
                            --cell-size, as gdr tet --sliver-angle does (default off; at most
                            30). Only points whose tetrahedra all lie inside move: the
-                           surface and the volume stay exactly as they were. The mesh is then not Delaunay where points moved, and
-                           --check skips that test
+                           surface and the volume stay exactly as they were. The mesh is
+                           then not Delaunay where points moved, and --check skips that test
   --feature-angle DEG      keep sharp features: input edges whose triangles' normals differ
                            by more than DEG (and the boundary of an open surface) are kept
                            as chains of surface edges, their corners as vertices (default 0:
