@@ -313,7 +313,8 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
                " of the volume) " + (st.bad_tets == 1 ? "remains" : "remain") +
                " above the bounds, marked by IsBad" +
                (st.slivers_left > 0 ? "; " + std::to_string(st.slivers_left) +
-                                          " of them slivers under the dihedral bound (sliver removal, --sliver-angle or SliverAngle, raises many)"
+                                          " of them slivers under the dihedral bound (sliver removal, "
+                                          "--sliver-angle or SliverAngle, raises many)"
                                     : std::string()));
   }
   st.output_seconds = since(t_output);

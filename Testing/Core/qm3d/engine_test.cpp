@@ -66,15 +66,20 @@ bool read_data_surface(const char* name, gdr::Surface& s) {
   return true;
 }
 
-// quality_tet_mesh at radius-edge B on `backend`, its result checked by the validator.
-gdr::QualityTetResult mesh_validated(const gdr::Surface& s, double B, gdr::Backend backend) {
-  gdr::QualityTetOptions o;
-  o.radius_edge_ratio = B;
-  o.backend = backend;
+// quality_tet_mesh with options `o`, its result checked by the validator.
+gdr::QualityTetResult mesh_validated(const gdr::Surface& s, const gdr::QualityTetOptions& o) {
   gdr::QualityTetResult r = gdr::quality_tet_mesh(s, o, {});
   const gdr::ValidationReport rep = gdr::validate_tetmesh(r.mesh, &s, {});
   EXPECT_TRUE(rep.valid) << rep.summary();
   return r;
+}
+
+// The same at radius-edge B on `backend`.
+gdr::QualityTetResult mesh_validated(const gdr::Surface& s, double B, gdr::Backend backend) {
+  gdr::QualityTetOptions o;
+  o.radius_edge_ratio = B;
+  o.backend = backend;
+  return mesh_validated(s, o);
 }
 
 const char* backend_name(gdr::Backend b) { return b == gdr::Backend::Gpu ? "GPU" : "CPU"; }
@@ -407,9 +412,7 @@ TEST(QualityTetMesh, DihedralBoundEndsWithoutCascade) {
     gdr::QualityTetOptions o;
     o.min_dihedral_angle = 25;
     o.backend = b;
-    const gdr::QualityTetResult r = gdr::quality_tet_mesh(s, o, {});
-    const gdr::ValidationReport rep = gdr::validate_tetmesh(r.mesh, &s, {});
-    EXPECT_TRUE(rep.valid) << rep.summary();
+    const gdr::QualityTetResult r = mesh_validated(s, o);
     EXPECT_FALSE(r.stats.steiner_cap_reached);
     EXPECT_LT(r.stats.output_tets, 500000);
     EXPECT_GT(r.stats.slivers_left, 0);
