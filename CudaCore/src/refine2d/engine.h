@@ -30,6 +30,7 @@ struct Strategies {
   bool block_rounds = true;  // small ExpandList windows run their rounds inside one GPU block
   bool grid_rounds = true;   // large ExpandList windows run their rounds in one grid-wide launch
   bool worst_first = true;   // triangles bad by shape alone smallest first, not larger first
+  bool graded = true;        // bad triangles wait for much smaller bad triangles nearby
 };
 
 struct EngineParams {
@@ -152,6 +153,7 @@ struct Engine {
       grow_cavities(ns);                                // line 7 (S2, S5)
       const long long won = verify_and_number(ns);
       contention(ns, won);
+      graded_now = won > 0;
       if (won > 0) {
         insert(ns, won);                                // line 8
         idle = 0;
@@ -271,7 +273,8 @@ struct Engine {
                                 compete_below,
                                 kShortWalk,
                                 false,
-                                0};
+                                0,
+                                near_levels(nl)};
     Ops::for_each(nl, step);
     const Candidate* ca = cand_all.data();
     const std::size_t nfar = exec::compact_indices<Space>(
@@ -285,6 +288,42 @@ struct Engine {
       Ops::for_each(nl, step);
     }
     clock.template stop<Space>("split+locate");
+  }
+
+  // Graded order (kernels.h, kGradeWindowShape): the least level of the triangles bad by
+  // their shape within kGradeHops of each triangle, in aux. Hops go from a frontier while it
+  // is small (late iterations: few bad triangles in a large mesh), over the whole mesh once
+  // it is not (mark as the second buffer; aux and mark are free until the filter). Off for
+  // one iteration after one that inserted nothing, so that a bad triangle that cannot be
+  // split never holds its neighbours back for good.
+  static constexpr int kGradeHops = 6;
+  bool graded_now = true;
+  Buf<LevelAt> front, pushed;
+  const int* near_levels(std::size_t nl) {
+    if (!params.strategies.graded || !graded_now) return nullptr;
+    int* const level = dm.aux.data();
+    Ops::for_each(dm.ntri, [=] GDR_HD(long long t) { level[t] = kNoLevel; });
+    front.resize_discard(nl);
+    Ops::for_each(nl, SeedLevels{dm.view(), crit, list.data(), level, front.data()});
+    const auto lowered = [] GDR_HD(const LevelAt& f) { return f.tri >= 0; };
+    std::size_t nf = exec::keep_if<Space>(front, lowered, count);
+    int hop = 0;
+    for (; hop < kGradeHops && nf > 0 && 8 * nf <= static_cast<std::size_t>(dm.ntri); ++hop) {
+      pushed.resize_discard(3 * nf);
+      Ops::for_each(nf, PushLevels{dm.view(), front.data(), pushed.data(), level});
+      front.swap(pushed);
+      nf = exec::keep_if<Space>(front, lowered, count);
+    }
+    front.release();
+    pushed.release();
+    if (nf == 0 || hop == kGradeHops) return level;
+    int *cur = level, *other = dm.mark.data();
+    for (; hop < kGradeHops; ++hop) {
+      Ops::for_each(dm.ntri, SpreadLevels{dm.view(), cur, other});
+      std::swap(cur, other);
+    }
+    if (cur != level) Ops::for_each(dm.ntri, [=] GDR_HD(long long t) { level[t] = cur[t]; });
+    return level;
   }
 
   // Line 7, first part (S3): one splitting point per triangle, by priority marks.

@@ -52,7 +52,7 @@ r2d::Criteria make_criteria(const Refine2dOptions& o) {
   return c;
 }
 
-// Design strategies switched off for a measurement: GDR_DISABLE=s1,s3,s4,s5,touching,block_rounds,grid_rounds,worst_first
+// Design strategies switched off for a measurement: GDR_DISABLE=s1,s3,s4,s5,touching,block_rounds,grid_rounds,worst_first,graded
 // (benchmarks only; see Benchmarks/README.md).
 r2d::Strategies strategies_from_environment() {
   r2d::Strategies s;
@@ -66,10 +66,11 @@ r2d::Strategies strategies_from_environment() {
         else if (name == "block_rounds") s.block_rounds = false;
         else if (name == "grid_rounds") s.grid_rounds = false;
         else if (name == "worst_first") s.worst_first = false;
+        else if (name == "graded") s.graded = false;
         else return false;
         return true;
       },
-      "s1, s3, s4, s5, touching, block_rounds, grid_rounds, worst_first");
+      "s1, s3, s4, s5, touching, block_rounds, grid_rounds, worst_first, graded");
   return s;
 }
 

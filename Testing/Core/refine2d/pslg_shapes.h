@@ -49,4 +49,43 @@ inline gdr::Pslg segments_in_cells(int n, unsigned seed) {
   return g;
 }
 
+// A map like a county map: an n x n grid of cells with corners moved at random, each
+// border a polyline of m pieces whose inner vertices wander off the straight line (some a
+// little, some 20 times less), the outer border straight. Planar by construction: the
+// corners stay within 0.3 of the grid, the wander within 0.08 of the border's length.
+inline gdr::Pslg wobbly_grid_map(int n, int m, unsigned seed) {
+  std::mt19937 rng(seed);
+  const auto u = [&rng](double lo, double hi) { return lo + (hi - lo) * (rng() / 4294967296.0); };
+  gdr::Pslg g;
+  std::vector<int> corner((n + 1) * (n + 1));
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j) {
+      const double jx = (i == 0 || i == n) ? 0 : u(-0.3, 0.3);
+      const double jy = (j == 0 || j == n) ? 0 : u(-0.3, 0.3);
+      corner[i * (n + 1) + j] = static_cast<int>(g.points.size());
+      g.points.push_back({i + jx, j + jy});
+    }
+  const auto border = [&](int a, int b, bool straight) {
+    const gdr::Point2 p = g.points[a], q = g.points[b];
+    const double nx = p.y - q.y, ny = q.x - p.x;
+    int prev = a;
+    for (int t = 1; t < m; ++t) {
+      const double s = static_cast<double>(t) / m;
+      const double amp = straight ? 0 : u(-0.08, 0.08) * (rng() % 3 == 0 ? 0.05 : 1.0);
+      const int v = static_cast<int>(g.points.size());
+      g.points.push_back({p.x + s * (q.x - p.x) + amp * nx, p.y + s * (q.y - p.y) + amp * ny});
+      g.segments.push_back({prev, v});
+      prev = v;
+    }
+    g.segments.push_back({prev, b});
+  };
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j) {
+      const int c = corner[i * (n + 1) + j];
+      if (i < n) border(c, corner[(i + 1) * (n + 1) + j], j == 0 || j == n);
+      if (j < n) border(c, corner[i * (n + 1) + j + 1], i == 0 || i == n);
+    }
+  return g;
+}
+
 }  // namespace gdr_test

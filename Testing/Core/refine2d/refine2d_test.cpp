@@ -26,6 +26,7 @@ using gdr_test::add_loop;
 using gdr_test::kPi;
 using gdr_test::regular_polygon;
 using gdr_test::square;
+using gdr_test::wobbly_grid_map;
 
 // Subsegments whose reported input segment does not hold both their endpoints (split points
 // are rounded, so "on" is up to a relative 1e-9; this checks labels, not topology).
@@ -63,7 +64,9 @@ class Refine2d : public gdr::test::OnBackend {
     o.backend = GetParam();
     gdr::Refine2dResult r = gdr::refine_2d(g, o);
     gdr::ValidateOptions vo;
-    vo.min_angle_deg = o.refine ? o.min_angle : 0;
+    // The engine's bound is sin^2 of the angle in doubles (sin 30 degrees rounds below 1/2):
+    // a triangle an ulp from the bound may fall either side of the validator's degrees.
+    vo.min_angle_deg = o.refine ? o.min_angle * (1 - 1e-12) : 0;
     const gdr::ValidationReport rep = gdr::validate_trimesh(r.mesh, check_input ? &g : nullptr, vo);
     EXPECT_TRUE(rep.valid) << rep.summary();
     EXPECT_EQ(rep.inverted_elements, 0u);
@@ -185,7 +188,7 @@ TEST_P(Refine2d, EachStrategySwitchedOffStillGivesAValidMesh) {
   o.min_angle = 28;
   o.max_edge_length = 0.06;  // ~50k points: more bad elements than compete in one iteration
   for (const char* name : {"s1", "s3", "s4", "s5", "touching", "block_rounds", "grid_rounds", "worst_first",
-                           "s1,s3,s4,s5,touching"}) {
+                           "graded", "s1,s3,s4,s5,touching"}) {
     SCOPED_TRACE(std::string("GDR_DISABLE=") + name);
     setenv("GDR_DISABLE", name, 1);
     auto r = mesh(g, o);
@@ -250,8 +253,9 @@ TEST_P(Refine2d, ExactlyCocircularPoints) {
   const auto r = mesh(g, o);
   EXPECT_EQ(r.stats.bad_triangles, 0);
   EXPECT_EQ(r.stats.output_points - r.stats.steiner_points, 26244);
-  // Wall time depends on the machine; the iteration count does not (much): 52 to 56 now.
-  EXPECT_LE(r.stats.iterations, 65);
+  // Wall time depends on the machine; the iteration count does not (much): 52 to 56
+  // without the graded order, about 67 with it (the same time).
+  EXPECT_LE(r.stats.iterations, 80);
 }
 
 // The same on a circle in floating point (cos, sin: cocircular up to rounding). Off-centres
@@ -441,6 +445,26 @@ TEST_P(Refine2d, SizeNearTriangle) {
     EXPECT_EQ(r.stats.bad_triangles, 0) << angle;
     EXPECT_LE(r.stats.steiner_points, triangle * 11 / 10) << angle;
   }
+}
+
+// Graded order (issue 13): on a map, the parallel insertion without it split coarse
+// triangles before the grading around small features reached them, and needed 13% more
+// points than Triangle 1.6 on the counties map at 30 degrees. On a generated map of 25k
+// points `triangle -pcq30` adds 34,995 Steiner points; with the graded order at most 2%
+// more, and fewer than without it (about 3% more than Triangle).
+TEST_P(Refine2d, GradedOrderKeepsAMapNearTriangle) {
+  const Pslg g = wobbly_grid_map(40, 8, 7);
+  auto o = options();
+  o.min_angle = 30;
+  const auto graded = mesh(g, o);
+  setenv("GDR_DISABLE", "graded", 1);
+  const auto plain = mesh(g, o);
+  unsetenv("GDR_DISABLE");
+  std::printf("wobbly map at 30 degrees: %lld Steiner points graded, %lld without\n",
+              graded.stats.steiner_points, plain.stats.steiner_points);
+  EXPECT_LT(graded.stats.bad_area_percent, 0.02);  // all next to small input angles
+  EXPECT_LE(graded.stats.steiner_points, 34995 * 102 / 100);
+  EXPECT_LE(graded.stats.steiner_points * 102 / 100, plain.stats.steiner_points);
 }
 
 // Edges that are not locally Delaunay, subsegments included (unconstrained).
