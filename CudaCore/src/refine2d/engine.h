@@ -296,9 +296,8 @@ struct Engine {
   // refinement time on the maps), then over the whole mesh (mark as the second buffer; aux
   // and mark are free until the filter). On the GPU, below kSparseFrom triangles, a pass over
   // the whole mesh costs less than reading the frontier's size back each hop (on the maps,
-  // 0.25 ms per iteration). Off for
-  // one iteration after one that inserted nothing, so that a bad triangle that cannot be
-  // split never holds its neighbours back for good.
+  // 0.25 ms per iteration). Off for one iteration after one that inserted nothing, so that
+  // a bad triangle that cannot be split never holds its neighbours back for good.
   static constexpr int kGradeHops = 6, kSparseFrom = 1 << 20;
   bool graded_now = true;
   Buf<LevelAt> front, pushed;
