@@ -294,38 +294,47 @@ struct Engine {
   // their shape within kGradeHops of each triangle, in aux. Hops go from a frontier while it
   // is small (late iterations: few bad triangles in a large mesh; on the CPU 25-35% less
   // refinement time on the maps), then over the whole mesh (mark as the second buffer; aux
-  // and mark are free until the filter). On the GPU, below kSparseFrom triangles, a pass over
-  // the whole mesh costs less than reading the frontier's size back each hop (on the maps,
-  // 0.25 ms per iteration). Off for one iteration after one that inserted nothing, so that
-  // a bad triangle that cannot be split never holds its neighbours back for good.
-  static constexpr int kGradeHops = 6, kSparseFrom = 1 << 20;
+  // and mark are free until the filter). The GPU never waits for a frontier's size (reading
+  // it back each hop cost 0.25 ms per iteration on the maps): each hop is launched over a
+  // bound of it and reads the size on the device, and so are the passes over the whole mesh,
+  // which do nothing where the frontiers did all the hops. Off for one iteration after one
+  // that inserted nothing, so that a bad triangle that cannot be split never holds its
+  // neighbours back for good.
+  static constexpr int kGradeHops = 6;
   bool graded_now = true;
   Buf<LevelAt> front, pushed;
+  Buf<int> front_size;
   const int* near_levels(std::size_t nl) {
     if (!params.strategies.graded || !graded_now) return nullptr;
     int* const level = dm.aux.data();
     Ops::for_each(dm.ntri, [=] GDR_HD(long long t) { level[t] = kNoLevel; });
-    const bool sparse = !Ops::is_gpu || dm.ntri >= kSparseFrom;
-    if (sparse) front.resize_discard(nl);
-    Ops::for_each(nl, SeedLevels{dm.view(), crit, list.data(), level, sparse ? front.data() : nullptr});
-    const auto lowered = [] GDR_HD(const LevelAt& f) { return f.tri >= 0; };
-    std::size_t nf = sparse ? exec::keep_if<Space>(front, lowered, count) : nl;
-    int hop = 0;
-    for (; sparse && hop < kGradeHops && nf > 0 && 8 * nf <= static_cast<std::size_t>(dm.ntri); ++hop) {
-      pushed.resize_discard(3 * nf);
-      Ops::for_each(nf, PushLevels{dm.view(), front.data(), pushed.data(), level});
+    const int cap = std::max(1024, dm.ntri / 8);
+    front.resize_discard(cap);
+    pushed.resize_discard(cap);
+    front_size.resize_discard(kGradeHops);
+    front_size.zero();
+    const Frontiers fr{front_size.data(), cap};
+    Ops::for_each(nl, SeedLevels{dm.view(), crit, list.data(), level, front.data(), fr});
+    // The CPU reads the sizes (host memory); the GPU launches over a bound of them.
+    const auto size_bound = [&](int h, std::size_t gpu_bound) -> std::size_t {
+      if (Ops::is_gpu) return std::min<std::size_t>(gpu_bound, cap);
+      const int n = front_size.get(h);
+      return n > cap ? 0 : n;  // overfull: the passes take over
+    };
+    std::size_t bound = size_bound(0, nl);
+    for (int hop = 1; hop <= kGradeHops && bound > 0; ++hop) {
+      Ops::for_each(bound, PushLevels{dm.view(), front.data(), pushed.data(), level, fr, hop, kGradeHops});
       front.swap(pushed);
-      nf = exec::keep_if<Space>(front, lowered, count);
+      if (hop < kGradeHops) bound = size_bound(hop, 3 * bound);
     }
     front.release();
     pushed.release();
-    if (nf == 0 || hop == kGradeHops) return level;
-    int *cur = level, *other = dm.mark.data();
-    for (; hop < kGradeHops; ++hop) {
-      Ops::for_each(dm.ntri, SpreadLevels{dm.view(), cur, other});
-      std::swap(cur, other);
-    }
-    if (cur != level) Ops::for_each(dm.ntri, [=] GDR_HD(long long t) { level[t] = cur[t]; });
+    const int done = Ops::is_gpu ? -1 : fr.hops_done(kGradeHops);  // -1: on the device
+    if (done == kGradeHops) return level;
+    int* const other = dm.mark.data();
+    for (int pass = std::max(done, 0); pass < kGradeHops; ++pass)
+      Ops::for_each(dm.ntri, SpreadLevels{dm.view(), level, other, fr, pass, kGradeHops});
+    Ops::for_each(dm.ntri, TakeSpreadLevels{level, other, fr, kGradeHops});
     return level;
   }
 

@@ -420,55 +420,86 @@ GDR_HD_INLINE float shortest_edge_class(const MeshView& m, int t) {
 // points. They wait, with a wider window, for the shape-bad ones near them.
 constexpr int kGradeWindowShape = 2, kGradeWindowSize = 4;
 
-// A triangle whose level was just lowered, to pass on in the next hop (tri -1: none).
+// A triangle whose level was just lowered, to pass on in the next hop.
 struct LevelAt {
   int tri, level;
 };
 
+// The frontiers of the hops (Engine::near_levels) are appended to at most `cap` entries,
+// their sizes counted on the device (size[h]: entries handed to hop h + 1), so that no hop
+// waits for the host. A frontier that outgrew its cap stops the hops; the rest are passes
+// over the whole mesh. Hops done in full: those before the first overfull frontier.
+struct Frontiers {
+  int* size;  // kGradeHops counts, zeroed
+  int cap;
+  GDR_HD void append(LevelAt* out, int hop, LevelAt f) const {
+    const int at = exec::atomic_add(&size[hop], 1);
+    if (at < cap) out[at] = f;
+  }
+  GDR_HD int hops_done(int hops) const {
+    for (int h = 0; h < hops; ++h)
+      if (size[h] > cap) return h;
+    return hops;
+  }
+};
+
 // Seeds the levels: each triangle bad by its shape its own level (kNoLevel elsewhere, aux
-// filled beforehand), and the first frontier (CPU).
+// filled beforehand), and the first frontier.
 constexpr int kNoLevel = 1 << 30;
 struct SeedLevels {
   MeshView m;
   Criteria c;
   const int* list;
   int* level;
-  LevelAt* front;  // null: no frontier
+  LevelAt* front;
+  Frontiers fr;
   GDR_HD void operator()(long long j) const {
     const int e = list[j];
-    const bool seed = (e & 3) == 3 && !too_big(m, e >> 2, c);
-    if (seed) level[e >> 2] = shortest_edge_level(m, e >> 2);
-    if (front) front[j] = seed ? LevelAt{e >> 2, level[e >> 2]} : LevelAt{-1, 0};
+    if ((e & 3) != 3 || too_big(m, e >> 2, c)) return;
+    const int t = e >> 2, l = shortest_edge_level(m, t);
+    level[t] = l;
+    fr.append(front, 0, LevelAt{t, l});
   }
 };
 
-// One hop from a small frontier: each entry lowers its neighbours' levels (atomic min), and
-// those it lowered form the next frontier. Entries carry the level they pass on, so that a
-// level lowered twice in one hop still travels one hop per round: after k rounds each level
-// is the least within k hops, in any order of the atomics.
+// Hop `hop` (1-based) from the frontier of the one before: each entry lowers its neighbours'
+// levels (atomic min), and those it lowered form the next frontier. Entries carry the level
+// they pass on, so that a level lowered twice in one hop still travels one hop per round:
+// after k rounds each level is the least within k hops, in any order of the atomics. Launched
+// over a bound of the frontier's size; a frontier that overflowed stops this hop and the rest.
 struct PushLevels {
   MeshView m;
   const LevelAt* in;
   LevelAt* out;
   int* level;
+  Frontiers fr;
+  int hop, last;
   GDR_HD void operator()(long long i) const {
+    const int n = fr.size[hop - 1];
+    if (i >= n || n > fr.cap) return;  // (after an overfull frontier, the next ones are empty)
     const LevelAt f = in[i];
     for (int k = 0; k < 3; ++k) {
       const int nb = m.tn[3 * f.tri + k];
-      LevelAt o{-1, f.level};
-      if (nb >= 0 && f.level < exec::atomic_min(&level[nb / 3], f.level)) o.tri = nb / 3;
-      out[3 * i + k] = o;
+      if (nb >= 0 && f.level < exec::atomic_min(&level[nb / 3], f.level) && hop < last)
+        fr.append(out, hop, LevelAt{nb / 3, f.level});
     }
   }
 };
 
-// One hop over the whole mesh (once the frontier is large): each live triangle takes the
-// smallest level of itself and its neighbours.
+// Pass `pass` over the whole mesh, for the hops the frontiers did not do: each live triangle
+// takes the smallest level of itself and its neighbours. The passes alternate between the
+// levels and a second buffer, starting from the levels at the first pass that runs.
 struct SpreadLevels {
   MeshView m;
-  const int* in;
-  int* out;
+  int* level;
+  int* other;
+  Frontiers fr;
+  int pass, hops;
   GDR_HD void operator()(long long i) const {
+    const int done = fr.hops_done(hops);
+    if (pass < done) return;
+    const int* in = (pass - done) % 2 ? other : level;
+    int* out = (pass - done) % 2 ? level : other;
     const int t = static_cast<int>(i);
     int v = in[t];
     if (!(m.tflag[t] & kDead))
@@ -477,6 +508,17 @@ struct SpreadLevels {
         if (nb >= 0 && in[nb / 3] < v) v = in[nb / 3];
       }
     out[t] = v;
+  }
+};
+
+// After the passes: where an odd number ran, the result is in the second buffer.
+struct TakeSpreadLevels {
+  int* level;
+  const int* other;
+  Frontiers fr;
+  int hops;
+  GDR_HD void operator()(long long t) const {
+    if ((hops - fr.hops_done(hops)) % 2) level[t] = other[t];
   }
 };
 

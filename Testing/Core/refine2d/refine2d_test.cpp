@@ -549,6 +549,28 @@ TEST_P(Refine2d, AnAutomaticCapEndsACascade) {
   EXPECT_LE(r.stats.steiner_points, 5000);
 }
 
+// A thin domain needs more points than any cap allows: the run is refused from the CDT with
+// the estimate, on both backends (beside the GPU's refinement the estimate runs on the host
+// meanwhile and stops it); with a cap of the caller's it is meshed up to the cap.
+TEST_P(Refine2d, ThinPartsAreRefusedWithTheEstimate) {
+  Pslg g;
+  add_loop(g, square(0, 0, 1, 1e-11));
+  auto o = options();
+  o.min_angle = 25;
+  try {
+    mesh(g, o);
+    ADD_FAILURE() << "a 1 x 1e-11 rectangle at 25 degrees was meshed";
+  } catch (const gdr::Error& e) {
+    EXPECT_EQ(e.status(), gdr::Status::InvalidInput);
+    EXPECT_NE(std::string(e.what()).find("Steiner points in the input's thin parts (the thinnest 1e-11 wide"),
+              std::string::npos) << e.what();
+  }
+  o.max_steiner_points = 2000;
+  const auto r = mesh(g, o);
+  EXPECT_TRUE(r.stats.steiner_cap_reached);
+  EXPECT_LE(r.stats.steiner_points, 2000);
+}
+
 // Worst-first ordering keeps refinement finite on the world map at 33.5 degrees (larger-first
 // cascaded to 1.4M points; CGAL Mesh_2 did not finish in 300 s).
 TEST_P(Refine2d, WorldMapAtThirtyThreeAndAHalfDegrees) {
