@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "predicates/predicates.h"
+#include "common/trace.h"
 #include "refine2d/cdt_engine.h"
 #include "refine2d/engine_dispatch.h"
 #include "refine2d/input.h"
@@ -76,6 +77,7 @@ HostMesh assemble_cdt(const CleanPslg& g, CdtTriangles c) {
   const int n = static_cast<int>(g.points.size());
   const int nt_all = static_cast<int>(c.tv.size() / 3);
   const int ninput = static_cast<int>(g.segments.size());
+  TraceSteps step("CDT assembly");
   // Outside: flood from the seeds without crossing a segment.
   std::vector<char> outside(nt_all, 0);
   std::vector<int> stack = c.exterior_seeds;
@@ -90,6 +92,7 @@ HostMesh assemble_cdt(const CleanPslg& g, CdtTriangles c) {
       if (c.tseg[3 * t + i] < 0 && c.tn[3 * t + i] >= 0 && !outside[c.tn[3 * t + i] / 3])
         stack.push_back(c.tn[3 * t + i] / 3);
   }
+  step("exterior flood");
   // Kept triangles numbered in order (a scan), then copied and relinked in parallel.
   std::vector<int> id(nt_all, -1);
   int nt = 0;
@@ -100,6 +103,7 @@ HostMesh assemble_cdt(const CleanPslg& g, CdtTriangles c) {
                 "no triangles are left after removing the exterior and the holes (are the "
                 "boundary segments closed, and are the hole points inside them?)");
 
+  step("numbering");
   HostMesh m;
   m.xy.resize(2 * std::size_t(n));
   m.ptype.assign(n, kInputPoint);
@@ -136,6 +140,7 @@ HostMesh assemble_cdt(const CleanPslg& g, CdtTriangles c) {
       }
     }
   }
+  step("copy and relink");
   // Domain-boundary edges that are not input segments become hull segments, numbered after
   // the input's.
   for (int u = 0; u < nt; ++u)
@@ -144,6 +149,7 @@ HostMesh assemble_cdt(const CleanPslg& g, CdtTriangles c) {
         m.ts[3 * u + i] = static_cast<int>(m.seg.size() / 2);
         m.seg.insert(m.seg.end(), {m.tv[3 * u + (i + 1) % 3], m.tv[3 * u + (i + 2) % 3]});
       }
+  step("hull segments");
   // Regions: from each seed in turn (a later seed wins, as in Triangle), every triangle
   // reachable without crossing a segment gets its number. Seeds outside the domain mark
   // nothing.

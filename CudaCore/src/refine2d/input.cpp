@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "predicates/predicates.h"
+#include "common/trace.h"
 
 namespace gdr::r2d {
 
@@ -465,7 +466,9 @@ std::string split_summary(const CleanPslg& g) {
 }  // namespace
 
 CleanPslg clean_input(const Pslg& in, const Refine2dOptions& o, const Callbacks& cb) {
+  TraceSteps step("input");
   validate_refine2d_input(in, o);
+  step("checks");
   CleanPslg g;
   g.holes = in.holes;
   g.regions = in.regions;
@@ -476,6 +479,7 @@ CleanPslg clean_input(const Pslg& in, const Refine2dOptions& o, const Callbacks&
   const auto& P = in.points;
   // (-0 and 0 compare equal as doubles, and NaN was refused.)
   const std::vector<int> order = sorted_indices(np, [&](int i) { return std::make_pair(P[i].x, P[i].y); });
+  step("points sorted");
   // Each run of equal points (sorted by index within the run) starts at its first in input
   // order; runs are handled by their starts in parallel, and the kept points are numbered by
   // a scan.
@@ -513,7 +517,9 @@ CleanPslg clean_input(const Pslg& in, const Refine2dOptions& o, const Callbacks&
     g.segments[s] = {remap[in.segments[s][0]], remap[in.segments[s][1]]};
     g.segment_origin[s] = static_cast<int>(s);
   }
+  step("duplicate points merged");
   dedupe_segments(g, cb);
+  step("duplicate segments");
 
   // Conflicts: by default CGAL's constrained triangulation splits every segment at all of
   // them at once (exact predicates, consistent rounding), and the result is checked again.
@@ -522,6 +528,7 @@ CleanPslg clean_input(const Pslg& in, const Refine2dOptions& o, const Callbacks&
   const bool split = !o.strict_input;
   // (With splitting, one conflict is enough to know that the segments must be split.)
   auto conflicts = find_segment_conflicts(g.points, g.segments, split ? 1 : count_limit);
+  step("crossings");
   if (conflicts.empty()) return g;
   if (split) {
     // Intersection points closer than 2^-40 of the extent are merged (snap rounding) and

@@ -20,6 +20,7 @@
 #include <sys/resource.h>
 
 #include "common/disabled_strategies.h"
+#include "common/trace.h"
 #include "exec/space.h"
 #include "gdr/refine2d.h"
 #include "gdr/validate.h"
@@ -572,6 +573,7 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
   // CDT (it cost about 0.35 s of a first GPU run).
   if (!user_options.deterministic)
     prewarm_gpu(user_options.backend, unscaled.points.size() + unscaled.segments.size(), kGpuCdtMinInput);
+  TraceSteps step("set-up");
   const PowerOfTwoScale scale(unscaled);
   scale.check_spread(unscaled);
   const Pslg input = scale.scaled(unscaled);
@@ -581,6 +583,7 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
     if (cb.progress) cb.progress(f, what);
   };
 
+  step("scaled");
   progress(0.0, "checking input");
   r2d::CleanPslg pslg = r2d::clean_input(input, options, cb);
   warn_misplaced_holes(pslg, cb);
@@ -623,6 +626,7 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
   st.cdt_seconds = since(t0);
   if (aborted()) throw Error(Status::Aborted, "aborted by the caller");
   const int cdt_points = mesh.points();
+  step("CDT");
 
   r2d::Criteria crit = make_criteria(options);
   crit.grid_exp = scale.grid_exp;
@@ -630,6 +634,7 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
   if (options.region_areas)
     for (const RegionSeed2& r : pslg.regions) region_area2.push_back(r.max_area > 0 ? 2 * r.max_area : 0.0);
   const SizeEstimate estimate = estimate_size(mesh, options, region_area2);
+  step("size estimate");
   if (options.deterministic && options.backend == Backend::Gpu)
     throw Error(Status::InvalidInput,
                 "deterministic runs use the CPU backend on one thread: on the GPU, as on several "
@@ -694,6 +699,7 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
     if (!why.empty()) throw Error(Status::InvalidInput, why);
   };
 
+  step("caps");
   params.strategies = strategies_from_environment();
   if (!options.refine) params.max_iterations = 0;
   Callbacks engine_cb = cb;
@@ -761,6 +767,7 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
       cb.warning("refinement stopped: no point can split the " + std::to_string(er.stuck) +
                  " element(s) left (bad triangles or encroached subsegments)");
   }
+  step("refinement");
   progress(0.96, "writing the mesh");
   const auto t_output = Clock::now();
 
@@ -788,11 +795,14 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
     out.subsegments[k] = {mesh_out.subseg[4 * k], mesh_out.subseg[4 * k + 1]};
     out.subsegment_source[k] = s < mesh.input_segments ? pslg.segment_origin[s] : -1;
   }
+  step("output converted");
   note_removed_segments(input, pslg, out, options.remove_exterior, cb);
+  step("segments kept");
   r2d::carry_input_data(input, pslg, mesh_out.xy.data(), mesh_out.subseg.data(),
                         mesh_out.tregion.empty() ? nullptr : mesh_out.tregion.data(),
                         options.region_attributes, out);
 
+  step("markers and attributes");
   // What is left bad (classified on the device), and how much of it the small-angle rule
   // protected; the total area and least sin^2 of an angle come from the engine (download).
   const auto scaled_point = [&](int v) { return Point2{mesh_out.xy[2 * v], mesh_out.xy[2 * v + 1]}; };
@@ -816,6 +826,7 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
   st.small_angle_bad = protected_bad;
   st.bad_area_percent = total_area > 0 ? 100.0 * bad_area / total_area : 0.0;
   st.min_angle_deg = nt ? min_angle : 0.0;
+  step("bad area");
   st.output_seconds = since(t_output);
   st.total_seconds = since(t_start);
   progress(1.0, "done");
