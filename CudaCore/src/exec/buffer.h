@@ -82,7 +82,8 @@ class Buffer {
     resize_discard(n);
     if (n) Ops<Space>::copy_to_space(data_, host, n * sizeof(T));
   }
-  void upload(const std::vector<T>& host) { upload(host.data(), host.size()); }
+  template <class A>
+  void upload(const std::vector<T, A>& host) { upload(host.data(), host.size()); }
   void download(T* host, std::size_t n, std::size_t offset = 0) const {
     if (n) Ops<Space>::copy_to_host(host, data_ + offset, n * sizeof(T));
   }

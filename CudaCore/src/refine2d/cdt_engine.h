@@ -27,7 +27,7 @@ namespace gdr::r2d {
 // What the device part hands back: every triangle, those at the bounding triangle's three
 // vertices (numbered n, n+1, n+2) included; tseg[3t+e] is the segment on edge e or -1.
 struct RawCdt {
-  std::vector<int> tv, tn, tseg;
+  exec::HostVector<int> tv, tn, tseg;
   std::vector<PhaseTime> phases;
 };
 

@@ -45,7 +45,7 @@ namespace {
 // The triangle holding p (its boundary counts): a walk with a rotating first edge, then a
 // scan of all triangles if the walk is long (a constrained triangulation can trap walks).
 // -1 if none holds it.
-int locate(const std::vector<int>& tv, const std::vector<int>& tn, const double* xy, const Point2& q) {
+int locate(const exec::HostVector<int>& tv, const exec::HostVector<int>& tn, const double* xy, const Point2& q) {
   const double p[2] = {q.x, q.y};
   const int nt = static_cast<int>(tv.size() / 3);
   auto inside = [&](int t, int& exit, int step) {
@@ -106,8 +106,8 @@ HostMesh assemble_cdt(const CleanPslg& g, CdtTriangles c) {
   step("numbering");
   HostMesh m;
   m.xy.resize(2 * std::size_t(n));
-  m.ptype.assign(n, kInputPoint);
-  m.pseg.assign(n, -1);
+  m.ptype.resize(n);
+  m.pseg.resize(n);
   m.seg.resize(2 * std::size_t(ninput));
   m.tv.resize(3 * std::size_t(nt));
   m.tn.resize(3 * std::size_t(nt));
@@ -119,6 +119,8 @@ HostMesh assemble_cdt(const CleanPslg& g, CdtTriangles c) {
     for (int i = 0; i < n; ++i) {
       m.xy[2 * i] = g.points[i].x;
       m.xy[2 * i + 1] = g.points[i].y;
+      m.ptype[i] = kInputPoint;
+      m.pseg[i] = -1;
     }
 #pragma omp for nowait
     for (int k = 0; k < ninput; ++k) {

@@ -41,7 +41,7 @@ HostMesh initial_cdt(const CleanPslg& pslg, bool remove_exterior);
 // on edge e (an index into the cleaned segments, or beyond them for convex-hull edges that
 // were made segments) or -1, tn -1 where there is no triangle across.
 struct CdtTriangles {
-  std::vector<int> tv, tn, tseg;
+  exec::HostVector<int> tv, tn, tseg;
   std::vector<int> exterior_seeds;  // triangles outside the domain whatever the segments say
   std::vector<int> hole_tris;       // per hole: the triangle holding it, or -1
   std::vector<int> region_tris;     // per region seed: the triangle holding it, or -1
