@@ -2,6 +2,7 @@
 #pragma once
 #include <omp.h>
 
+#include <parallel/algorithm>
 #include <cstdlib>
 #include <cstring>
 #include <map>
@@ -105,6 +106,18 @@ struct Ops<Cpu> {
   }
 
   // out[i] = sum(in[0..i)); returns the total. `in` and `out` may alias.
+  // Stable sort of (key, value) pairs by key.
+  static void sort_pairs(unsigned long long* keys, int* values, std::size_t n) {
+    std::vector<std::pair<unsigned long long, int>> kv(n);
+    const std::ptrdiff_t m = static_cast<std::ptrdiff_t>(n);
+#pragma omp parallel for if (m > serial_below)
+    for (std::ptrdiff_t i = 0; i < m; ++i) kv[i] = {keys[i], values[i]};
+    __gnu_parallel::stable_sort(kv.begin(), kv.end(),
+                                [](const auto& a, const auto& b) { return a.first < b.first; });
+#pragma omp parallel for if (m > serial_below)
+    for (std::ptrdiff_t i = 0; i < m; ++i) keys[i] = kv[i].first, values[i] = kv[i].second;
+  }
+
   template <class T>
   static T exclusive_scan(const T* in, T* out, std::size_t n) {
     const std::ptrdiff_t m = static_cast<std::ptrdiff_t>(n);

@@ -5,6 +5,7 @@
 
 #include <cooperative_groups.h>
 #include <cub/block/block_scan.cuh>
+#include <cub/device/device_radix_sort.cuh>
 #include <cub/device/device_scan.cuh>
 #include <algorithm>
 #include <cstring>
@@ -326,6 +327,26 @@ struct Ops<Cuda> {
     right = static_cast<std::size_t>(state[1]);
     rounds = static_cast<int>(state[2]);
     return true;
+  }
+
+  // Stable sort of (key, value) pairs by key (radix sort, through scratch copies).
+  static void sort_pairs(unsigned long long* keys, int* values, std::size_t n) {
+    if (n < 2) return;
+    auto* k2 = static_cast<unsigned long long*>(allocate(n * sizeof(unsigned long long)));
+    auto* v2 = static_cast<int*>(allocate(n * sizeof(int)));
+    std::size_t temp_bytes = 0;
+    detail::cuda_check(cub::DeviceRadixSort::SortPairs(nullptr, temp_bytes, keys, k2, values, v2, (int)n),
+                       "sort size");
+    void* temp = allocate(temp_bytes);
+    const cudaError_t e = cub::DeviceRadixSort::SortPairs(temp, temp_bytes, keys, k2, values, v2, (int)n);
+    deallocate(temp, temp_bytes);
+    if (e == cudaSuccess) {
+      copy_d2d(keys, k2, n * sizeof(unsigned long long));
+      copy_d2d(values, v2, n * sizeof(int));
+    }
+    deallocate(k2, n * sizeof(unsigned long long));
+    deallocate(v2, n * sizeof(int));
+    detail::cuda_check(e, "sort");
   }
 
   template <class T>

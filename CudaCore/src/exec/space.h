@@ -2,8 +2,8 @@
 //   Cpu  (exec/cpu.h, compiled by g++ with OpenMP)
 //   Cuda (exec/cuda.cuh, compiled by nvcc)
 // Ops<Space> provides: allocate/deallocate, copies, zero-fill, for_each(n, f),
-// exclusive_scan, synchronize. Everything else (buffers, compaction, ExpandList) is
-// written once on top of these.
+// exclusive_scan, sort_pairs (stable, by 64-bit key), synchronize. Everything else
+// (buffers, compaction, ExpandList) is written once on top of these.
 #pragma once
 #include <cstddef>
 

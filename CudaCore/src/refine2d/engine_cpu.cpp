@@ -1,5 +1,7 @@
 #include "exec/cpu.h"
 #include "refine2d/engine_dispatch.h"
+#include "refine2d/input.h"
+#include "refine2d/input_checks.h"
 
 namespace gdr::r2d {
 
@@ -9,6 +11,10 @@ EngineResult refine_mesh_cpu(const HostMesh& mesh, MeshResult& out, const Engine
     ~Trim() { exec::Ops<exec::Cpu>::trim(); }
   } trim;
   return refine_mesh<exec::Cpu>(mesh, out, params, cb);
+}
+
+bool input_is_clean_cpu(const std::vector<Point2>& points, const std::vector<std::array<int, 2>>& segments) {
+  return input_is_clean<exec::Cpu>(points, segments);
 }
 
 RawCdt parallel_cdt_cpu(const std::vector<double>& xy, const std::vector<int>& segments, bool hull) {

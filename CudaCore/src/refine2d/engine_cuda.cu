@@ -1,5 +1,7 @@
 #include "exec/cuda.cuh"
 #include "refine2d/engine_dispatch.h"
+#include "refine2d/input.h"
+#include "refine2d/input_checks.h"
 
 namespace gdr::r2d {
 
@@ -20,6 +22,10 @@ RawCdt parallel_cdt_cuda(const std::vector<double>& xy, const std::vector<int>& 
     exec::Ops<exec::Cuda>::trim();
     throw;
   }
+}
+
+bool input_is_clean_cuda(const std::vector<Point2>& points, const std::vector<std::array<int, 2>>& segments) {
+  return input_is_clean<exec::Cuda>(points, segments);
 }
 
 void trim_device_memory_cuda() { exec::Ops<exec::Cuda>::trim(); }

@@ -465,7 +465,7 @@ std::string split_summary(const CleanPslg& g) {
 
 }  // namespace
 
-CleanPslg clean_input(const Pslg& in, const Refine2dOptions& o, const Callbacks& cb) {
+CleanPslg clean_input(const Pslg& in, const Refine2dOptions& o, const Callbacks& cb, bool on_gpu) {
   TraceSteps step("input");
   validate_refine2d_input(in, o);
   step("checks");
@@ -473,6 +473,23 @@ CleanPslg clean_input(const Pslg& in, const Refine2dOptions& o, const Callbacks&
   g.holes = in.holes;
   g.regions = in.regions;
   g.first_index = in.first_index;
+#if defined(GDR_HAVE_CUDA)
+  if (on_gpu && input_is_clean_cuda(in.points, in.segments)) {
+    step("clean, on the GPU");
+    g.points = in.points;
+    g.segments = in.segments;
+    g.point_origin.resize(in.points.size());
+    g.segment_origin.resize(in.segments.size());
+    const long long np = static_cast<long long>(in.points.size()), ns = static_cast<long long>(in.segments.size());
+#pragma omp parallel for
+    for (long long i = 0; i < np; ++i) g.point_origin[i] = static_cast<int>(i);
+#pragma omp parallel for
+    for (long long s = 0; s < ns; ++s) g.segment_origin[s] = static_cast<int>(s);
+    return g;
+  }
+#else
+  (void)on_gpu;
+#endif
   // Duplicate points: sorted by coordinates (-0 == 0), each run of equal points maps to its
   // first in input order; the kept points stay in input order.
   const std::size_t np = in.points.size();

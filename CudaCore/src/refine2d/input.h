@@ -24,8 +24,16 @@ struct CleanPslg {
   long long duplicates_merged = 0;
 };
 
-// Throws InvalidInput / SelfIntersectingInput naming the offending items.
-CleanPslg clean_input(const Pslg& input, const Refine2dOptions& options, const Callbacks& cb);
+// Throws InvalidInput / SelfIntersectingInput naming the offending items. With `on_gpu`,
+// an input that needs no cleaning is recognised on the GPU (input_checks.h).
+CleanPslg clean_input(const Pslg& input, const Refine2dOptions& options, const Callbacks& cb,
+                      bool on_gpu = false);
+
+// Whether the points and segments need no cleaning at all (input_checks.h), in each space.
+bool input_is_clean_cpu(const std::vector<Point2>& points, const std::vector<std::array<int, 2>>& segments);
+#if defined(GDR_HAVE_CUDA)
+bool input_is_clean_cuda(const std::vector<Point2>& points, const std::vector<std::array<int, 2>>& segments);
+#endif
 
 // Splits the segments at every crossing, touching point, overlap and point lying on them,
 // with CGAL's constrained triangulation (exact predicates; intersection points rounded to the

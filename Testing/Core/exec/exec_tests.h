@@ -136,6 +136,34 @@ void check_exclusive_scan() {
   check_scan_type<Space, std::size_t>(3, 4);
 }
 
+// sort_pairs: by key, stable (equal keys keep their values' order), on many equal keys.
+template <class Space>
+void check_sort_pairs() {
+  std::mt19937 rng(5);
+  for (const std::size_t n : {std::size_t(0), std::size_t(1), std::size_t(1000), std::size_t(300000)}) {
+    std::vector<u64> keys(n);
+    std::vector<int> values(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      keys[i] = (rng() % 64) << 58 | (rng() % 3);  // high and low bits, many ties
+      values[i] = static_cast<int>(i);
+    }
+    std::vector<std::pair<u64, int>> ref(n);
+    for (std::size_t i = 0; i < n; ++i) ref[i] = {keys[i], values[i]};
+    std::stable_sort(ref.begin(), ref.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    Buffer<Space, u64> k;
+    Buffer<Space, int> v;
+    k.upload(keys);
+    v.upload(values);
+    Ops<Space>::sort_pairs(k.data(), v.data(), n);
+    const std::vector<u64> ks = k.to_host();
+    const std::vector<int> vs = v.to_host();
+    for (std::size_t i = 0; i < n; ++i) {
+      ASSERT_EQ(ks[i], ref[i].first) << "n " << n << " at " << i;
+      ASSERT_EQ(vs[i], ref[i].second) << "n " << n << " at " << i << ": not stable";
+    }
+  }
+}
+
 // ---------------------------------------------------------------------------------------
 // compact_indices (S1)
 
@@ -957,6 +985,7 @@ void check_memory_counter() {
 #define GDR_EXEC_TESTS(SUITE, SPACE, GUARD)                                         \
   TEST(SUITE, FillIotaForEach) { GUARD; gdr::exec_test::check_fill_iota<SPACE>(); } \
   TEST(SUITE, ExclusiveScan) { GUARD; gdr::exec_test::check_exclusive_scan<SPACE>(); } \
+  TEST(SUITE, SortPairs) { GUARD; gdr::exec_test::check_sort_pairs<SPACE>(); }     \
   TEST(SUITE, CompactIndices) { GUARD; gdr::exec_test::check_compaction<SPACE>(); } \
   TEST(SUITE, Buffer) { GUARD; gdr::exec_test::check_buffer<SPACE>(); }             \
   TEST(SUITE, PriorityMarking) { GUARD; gdr::exec_test::check_priority<SPACE>(); }  \

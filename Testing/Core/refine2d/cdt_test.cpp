@@ -15,6 +15,7 @@
 #include "gdr/validate.h"
 #include "on_backend.h"
 #include "pslg_shapes.h"
+#include "refine2d/input.h"
 
 namespace {
 
@@ -190,6 +191,84 @@ TEST_P(ParallelCdt, RefinementFromIt) {
   EXPECT_TRUE(rep.valid) << rep.summary();
   EXPECT_EQ(r.stats.bad_triangles, 0);
   EXPECT_GT(r.stats.steiner_points, 0);
+}
+
+// The input checks of large GPU runs (refine2d/input_checks.h) call an input clean exactly
+// when the host's checks find nothing to mend: each defect alone, on a map of segments in
+// cells (many cells of the grid), is found in each space; the host's path agrees (a GPU run
+// of a defective input takes the host's path and gives the CPU's mesh).
+TEST_P(ParallelCdt, InputChecksFindEachDefect) {
+  const auto is_clean = [&](const Pslg& g) {
+#if defined(GDR_HAVE_CUDA)
+    if (GetParam() == Backend::Gpu) return gdr::r2d::input_is_clean_cuda(g.points, g.segments);
+#endif
+    return gdr::r2d::input_is_clean_cpu(g.points, g.segments);
+  };
+  const auto host_mends = [](const Pslg& g) {
+    gdr::Refine2dOptions o;
+    o.refine = false;
+    std::vector<std::string> said;
+    gdr::Callbacks cb;
+    cb.warning = [&](const std::string& w) { said.push_back(w); };
+    const gdr::r2d::CleanPslg c = gdr::r2d::clean_input(g, o, cb);
+    return !said.empty() || c.points.size() != g.points.size() || c.segments.size() != g.segments.size();
+  };
+  Pslg base = gdr_test::segments_in_cells(40, 3);
+  base.points.push_back({20.5, 20.5});  // a point on no segment, in no segment's way
+  add_loop(base, gdr_test::square(-1, -1, 41, 41));
+  EXPECT_TRUE(is_clean(base));
+  EXPECT_FALSE(host_mends(base));
+  const int a = base.segments[100][0], b = base.segments[100][1];
+  const Point2 pa = base.points[a], pb = base.points[b];
+  std::vector<std::pair<std::string, Pslg>> defects;
+  auto with = [&](const std::string& what, auto change) {
+    Pslg g = base;
+    change(g);
+    defects.push_back({what, g});
+  };
+  with("duplicate point", [&](Pslg& g) { g.points.push_back(g.points[7]); });
+  with("-0 beside 0", [&](Pslg& g) {
+    g.points.push_back({0.0, 45.0});
+    g.points.push_back({-0.0, 45.0});
+  });
+  with("repeated segment, reversed", [&](Pslg& g) { g.segments.push_back({b, a}); });
+  with("crossing", [&](Pslg& g) {
+    const int n = static_cast<int>(g.points.size());
+    const Point2 m{(pa.x + pb.x) / 2, (pa.y + pb.y) / 2};
+    g.points.push_back({m.x - (pb.y - pa.y), m.y + (pb.x - pa.x)});
+    g.points.push_back({m.x + (pb.y - pa.y), m.y - (pb.x - pa.x)});
+    g.segments.push_back({n, n + 1});
+  });
+  with("an end on another's interior", [&](Pslg& g) {
+    const int n = static_cast<int>(g.points.size());
+    g.points.push_back({(pa.x + pb.x) / 2, (pa.y + pb.y) / 2});
+    g.points.push_back({(pa.x + pb.x) / 2 + 0.01, (pa.y + pb.y) / 2 - 0.003});
+    g.segments.push_back({n, n + 1});
+  });
+  with("collinear overlap", [&](Pslg& g) {
+    const int n = static_cast<int>(g.points.size());
+    for (double x : {50.0, 52.0, 51.0, 53.0}) g.points.push_back({x, 0.5 * x});
+    g.segments.push_back({n, n + 1});
+    g.segments.push_back({n + 2, n + 3});
+  });
+  with("a point on a segment", [&](Pslg& g) { g.points.push_back({-1, 3.25}); });
+  for (const auto& [what, g] : defects) {
+    EXPECT_FALSE(is_clean(g)) << what;
+    EXPECT_TRUE(host_mends(g)) << what;
+  }
+  // Through the facade: the crossing is split, as on the CPU, and the CDT is valid.
+  gdr::Refine2dOptions o;
+  o.refine = false;
+  o.cdt = CdtMethod::Parallel;
+  o.backend = GetParam();
+  std::vector<std::string> said;
+  gdr::Callbacks cb;
+  cb.warning = [&](const std::string& w) { said.push_back(w); };
+  const gdr::Refine2dResult r = gdr::refine_2d(defects[3].second, o, cb);
+  EXPECT_EQ(r.mesh.points.size(), defects[3].second.points.size() + 1);  // the crossing point
+  ASSERT_FALSE(said.empty());
+  EXPECT_NE(said[0].find("split"), std::string::npos) << said[0];
+  EXPECT_TRUE(gdr::validate_trimesh(r.mesh, &defects[3].second, {}).valid);
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, ParallelCdt, gdr::test::both_backends(), gdr::test::backend_name);
