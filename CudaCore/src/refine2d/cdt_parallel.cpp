@@ -181,6 +181,7 @@ HostMesh initial_cdt_parallel(const CleanPslg& g, bool remove_exterior, bool gpu
                               std::vector<PhaseTime>* phases) {
   const int n = static_cast<int>(g.points.size());
   std::vector<double> xy(2 * std::size_t(n) + 6);
+#pragma omp parallel for
   for (int i = 0; i < n; ++i) {
     xy[2 * i] = g.points[i].x;
     xy[2 * i + 1] = g.points[i].y;
@@ -190,9 +191,10 @@ HostMesh initial_cdt_parallel(const CleanPslg& g, bool remove_exterior, bool gpu
   const double M = std::ldexp(1.0, 40);
   const double corners[6] = {-M, -M, M, -M, 0, M};
   std::copy(corners, corners + 6, xy.begin() + 2 * std::size_t(n));
-  std::vector<int> segments;
-  segments.reserve(2 * g.segments.size());
-  for (const auto& s : g.segments) segments.insert(segments.end(), {s[0], s[1]});
+  std::vector<int> segments(2 * g.segments.size());
+  const long long ns = static_cast<long long>(g.segments.size());
+#pragma omp parallel for
+  for (long long s = 0; s < ns; ++s) segments[2 * s] = g.segments[s][0], segments[2 * s + 1] = g.segments[s][1];
   RawCdt raw;
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
