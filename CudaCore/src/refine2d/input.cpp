@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <new>
 #include <parallel/algorithm>
 #include <sstream>
 
@@ -474,7 +475,16 @@ CleanPslg clean_input(const Pslg& in, const Refine2dOptions& o, const Callbacks&
   g.regions = in.regions;
   g.first_index = in.first_index;
 #if defined(GDR_HAVE_CUDA)
-  if (on_gpu && input_is_clean_cuda(in.points, in.segments)) {
+  // (A device that cannot run the checks, out of memory say, leaves them to the host.)
+  bool clean = false;
+  if (on_gpu) {
+    try {
+      clean = input_is_clean_cuda(in.points, in.segments);
+    } catch (const Error&) {
+    } catch (const std::bad_alloc&) {
+    }
+  }
+  if (clean) {
     step("clean, on the GPU");
     g.points = in.points;
     g.segments = in.segments;

@@ -576,7 +576,7 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
   // CDT (it cost about 0.35 s of a first GPU run).
   if (!user_options.deterministic)
     prewarm_gpu(user_options.backend, unscaled.points.size() + unscaled.segments.size(), kGpuCdtMinInput);
-  TraceSteps step("set-up");
+  TraceSteps step("run");
   const PowerOfTwoScale scale(unscaled);
   scale.check_spread(unscaled);
   const Pslg input = scale.scaled(unscaled);
