@@ -670,7 +670,7 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
   // before much time is spent on them (a 1 x 1e-11 rectangle at 25 degrees ran 15-40 s to
   // the cap of 1M); a cap of the caller's own meshes them up to that cap. The estimate reads
   // only the CDT: before a CPU refinement it runs first; beside a GPU one it runs on the host
-  // meanwhile (0.07 s of set-up on a 1M-segment map), and a refusal stops the refinement.
+  // meanwhile (0.1 s of set-up on a 1M-segment map), and a refusal stops the refinement.
   const auto thin_refusal = [&]() -> std::string {
     const auto t_thin = Clock::now();
     const ThinEstimate thin = estimate_thin_parts(mesh, std::tan(options.min_angle * kPi / 180.0));
