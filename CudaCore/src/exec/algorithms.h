@@ -136,7 +136,7 @@ ExpandListResult expand_list(Buffer<Space, Tuple>& H, std::size_t initial, Step 
     Tuple* st = stage.data();
     int* cnt = count.data();
     const std::size_t base = left;
-    Ops<Space>::for_each(w, [=] GDR_HD(long long j) {
+    Ops<Space>::for_each_heavy(w, [=] GDR_HD(long long j) {
       cnt[j] = step(static_cast<long long>(base) + j, h[j], st + j * K);
     });
     const std::size_t added = static_cast<std::size_t>(Ops<Space>::exclusive_scan(cnt, cnt, w));

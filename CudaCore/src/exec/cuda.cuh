@@ -238,6 +238,11 @@ struct Ops<Cuda> {
     detail::cuda_check(cudaGetLastError(), "kernel launch");
   }
 
+  template <class F>
+  static void for_each_heavy(std::size_t n, F f) {  // see Ops<Cpu>::for_each_heavy
+    for_each(n, f);
+  }
+
   // See detail::small_rounds_kernel. Updates left, right and rounds.
   template <int K, class Tuple, class Step>
   static void small_rounds(Tuple* H, std::size_t& left, std::size_t& right, std::size_t cap,
