@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -139,7 +140,14 @@ int run_selfcheck(const std::vector<std::string>& args) {
   const DeviceInfo& dev = device_info();
   std::printf("gdr %s self-check\n", version());
   std::printf("  build        %s\n", build_summary().c_str());
-  std::printf("  CPU backend  OpenMP, %d threads\n", cpu_threads());
+  const auto env = [](const char* name) -> std::string {
+    const char* v = std::getenv(name);
+    return v && *v ? std::string(name) + "=" + v : std::string();
+  };
+  std::string waiting = env("OMP_WAIT_POLICY");
+  if (waiting.empty()) waiting = env("GOMP_SPINCOUNT");
+  if (waiting.empty()) waiting = "OpenMP's default";
+  std::printf("  CPU backend  OpenMP, %d threads, waiting %s\n", cpu_threads(), waiting.c_str());
   if (dev.available)
     std::printf("  CUDA device  %s, %s\n", dev.name.c_str(), bytes(dev.total_memory).c_str());
   else
