@@ -58,16 +58,21 @@ vtk_module_wrap_python(
   INSTALL_HEADERS    OFF
   BUILD_STATIC       OFF)
 
-# The package's __init__: imports VTK's base modules first, then the wrapped classes, then
+# The package's __init__: OpenMP's short spin unless the user chose (as gdr does in
+# apps/gdr/main.cpp; libgomp reads it when it loads, with the wrapped classes, unless
+# something imported before has loaded it), VTK's base modules, the wrapped classes, then
 # the NumPy API (Python/gpudelaunay: refine_2d, MeshingError, ...).
 set(_gdr_python_package "${CMAKE_BINARY_DIR}/${GDR_PYTHON_DESTINATION}/gpudelaunay")
 set(_gdr_python_init "${_gdr_python_package}/__init__.py")
 file(GENERATE OUTPUT "${_gdr_python_init}" CONTENT
 "\"\"\"GPU Delaunay mesh refinement for VTK (vtkGPUConstrainedDelaunay2D,
 vtkGPUQualityTetMesh, vtkGPURestrictedDelaunay3D) and NumPy (refine_2d).\"\"\"
-import vtkmodules.vtkCommonExecutionModel  # noqa: F401  (base classes)
-from .GPUDelaunayFilters import *  # noqa: F401,F403
-from .meshing import (MeshingError, MeshingWarning, MeshResult, refine_2d,  # noqa: F401
+import os
+if not (os.environ.get('OMP_WAIT_POLICY') or os.environ.get('GOMP_SPINCOUNT')):
+    os.environ['GOMP_SPINCOUNT'] = '10000'  # threads that share the cores (README, Backends)
+import vtkmodules.vtkCommonExecutionModel  # noqa: E402,F401  (base classes)
+from .GPUDelaunayFilters import *  # noqa: E402,F401,F403
+from .meshing import (MeshingError, MeshingWarning, MeshResult, refine_2d,  # noqa: E402,F401
                       update, update_pipeline)
 ")
 configure_file("${PROJECT_SOURCE_DIR}/Python/gpudelaunay/meshing.py"
