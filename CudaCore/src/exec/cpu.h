@@ -129,7 +129,6 @@ struct Ops<Cpu> {
     for (std::ptrdiff_t i = 0; i < m; ++i) f(i);
   }
 
-  // out[i] = sum(in[0..i)); returns the total. `in` and `out` may alias.
   // Stable sort of (key, value) pairs by key.
   static void sort_pairs(unsigned long long* keys, int* values, std::size_t n) {
     std::vector<std::pair<unsigned long long, int>> kv(n);
@@ -142,6 +141,7 @@ struct Ops<Cpu> {
     for (std::ptrdiff_t i = 0; i < m; ++i) keys[i] = kv[i].first, values[i] = kv[i].second;
   }
 
+  // out[i] = sum(in[0..i)); returns the total. `in` and `out` may alias.
   template <class T>
   static T exclusive_scan(const T* in, T* out, std::size_t n) {
     const std::ptrdiff_t m = static_cast<std::ptrdiff_t>(n);
