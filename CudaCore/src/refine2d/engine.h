@@ -350,12 +350,11 @@ struct Engine {
     front.resize_discard(nl);
     LevelAt* seed = front.data();
     Ops::for_each(nl, [=] GDR_HD(long long j) {
-      const int e = lst[j];
+      const int e = lst[j], l = seed_level(mv, c, e);
       seed[j] = LevelAt{-1, 0};
-      if ((e & 3) != 3 || too_big(mv, e >> 2, c)) return;
-      const int t = e >> 2, l = shortest_edge_level(mv, t);
-      level[t] = l;
-      seed[j] = LevelAt{t, l};
+      if (l == kNoLevel) return;
+      level[e >> 2] = l;
+      seed[j] = LevelAt{e >> 2, l};
     });
     const auto entry = [] GDR_HD(const LevelAt& f) { return f.tri >= 0; };
     std::size_t n = exec::keep_if(front, entry, work);

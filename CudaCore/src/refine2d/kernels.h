@@ -446,6 +446,12 @@ struct Frontiers {
 // Seeds the levels: each triangle bad by its shape its own level (kNoLevel elsewhere, aux
 // filled beforehand), and the first frontier.
 constexpr int kNoLevel = 1 << 30;
+// The level that bad-list entry e seeds: its triangle's, where the triangle is bad by its
+// shape (slot 3, not too big for the size bounds); kNoLevel for every other entry.
+GDR_HD_INLINE int seed_level(const MeshView& m, const Criteria& c, int e) {
+  if ((e & 3) != 3 || too_big(m, e >> 2, c)) return kNoLevel;
+  return shortest_edge_level(m, e >> 2);
+}
 struct SeedLevels {
   MeshView m;
   Criteria c;
@@ -454,11 +460,10 @@ struct SeedLevels {
   LevelAt* front;
   Frontiers fr;
   GDR_HD void operator()(long long j) const {
-    const int e = list[j];
-    if ((e & 3) != 3 || too_big(m, e >> 2, c)) return;
-    const int t = e >> 2, l = shortest_edge_level(m, t);
-    level[t] = l;
-    fr.append(front, 0, LevelAt{t, l});
+    const int e = list[j], l = seed_level(m, c, e);
+    if (l == kNoLevel) return;
+    level[e >> 2] = l;
+    fr.append(front, 0, LevelAt{e >> 2, l});
   }
 };
 
