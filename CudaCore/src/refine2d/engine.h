@@ -243,13 +243,73 @@ struct Engine {
   // keeps a 4-bit mask in its flags and its entry count in aux; the in-place scan of the
   // counts places the entries (t*4 + slot), so collecting needs no arrays of its own.
   std::size_t collect() {
-    Ops::for_each(dm.ntri, CollectMask{dm.view(), crit});
-    int* cnt = dm.aux.data();
-    const std::size_t nl = static_cast<std::size_t>(Ops::exclusive_scan(cnt, cnt, dm.ntri));
-    list.resize_discard(nl);
-    if (nl) Ops::for_each(dm.ntri, ExpandElements{dm.view(), list.data()});
+    std::size_t nl = 0;
+    if (!collect_listed(nl)) {
+      Ops::for_each(dm.ntri, CollectMask{dm.view(), crit});
+      int* cnt = dm.aux.data();
+      nl = static_cast<std::size_t>(Ops::exclusive_scan(cnt, cnt, dm.ntri));
+      list.resize_discard(nl);
+      if (nl) Ops::for_each(dm.ntri, ExpandElements{dm.view(), list.data()});
+    }
+    if constexpr (!Ops::is_gpu) watch_list(nl);
     clock.template stop<Space>("collect");
     return nl;
+  }
+
+  // The CPU's work list. Late iterations split a few hundred elements of a mesh of millions:
+  // one thread spent a quarter of its refinement of the generated 1M-segment map in 74 such
+  // iterations of 86, mostly in passes over the whole mesh. A triangle's elements are all
+  // in its flags and can only appear when it is new or when its flags change (TouchLog), so
+  // the triangles of the last list, the new ones (appended since: [listed_below, ntri)) and
+  // the touched ones hold every element. Sorted, they give the same list as the whole-mesh
+  // scan, in the same order: the same mesh. The GPU scans the whole mesh (three launches).
+  Buf<int> watch, pending, touched, touched_n;
+  int listed_below = 0;  // 0: scan the whole mesh next (first iteration, after compaction)
+  TouchLog touch_log() {
+    if constexpr (Ops::is_gpu) return {};
+    else return {touched.data(), touched_n.data(), static_cast<int>(touched.size())};
+  }
+  bool collect_listed(std::size_t& nl) {
+    if constexpr (Ops::is_gpu) {
+      return false;
+    } else {
+      const std::size_t nw = watch.size(), nnew = dm.ntri - listed_below;
+      const std::size_t nt = listed_below ? static_cast<std::size_t>(touched_n.get(0)) : 0;
+      const std::size_t n = nw + nnew + nt;
+      // Past an eighth of the mesh the scan costs less than the sort.
+      if (!listed_below || nt > touched.size() || 8 * n > static_cast<std::size_t>(dm.ntri)) return false;
+      pending.resize_discard(n);
+      int* p = pending.data();
+      std::copy(watch.data(), watch.data() + nw, p);
+      for (std::size_t i = 0; i < nnew; ++i) p[nw + i] = listed_below + static_cast<int>(i);
+      std::copy(touched.data(), touched.data() + nt, p + nw + nnew);
+      std::sort(p + nw + nnew, p + n);
+      std::inplace_merge(p, p + nw + nnew, p + n);
+      const std::size_t m = static_cast<std::size_t>(std::unique(p, p + n) - p);
+      count.resize_discard(m);
+      int* cnt = count.data();
+      Ops::for_each(m, CollectMaskAt{dm.view(), crit, p, cnt});
+      nl = static_cast<std::size_t>(Ops::exclusive_scan(cnt, cnt, m));
+      list.resize_discard(nl);
+      if (nl) Ops::for_each(m, ExpandElementsAt{dm.view(), p, cnt, list.data()});
+      return true;
+    }
+  }
+  // The triangles of the list, once each, and a fresh log for this iteration's touches;
+  // nothing while the list is long (the next collect scans the whole mesh anyway).
+  void watch_list(std::size_t nl) {
+    listed_below = 0;
+    watch.resize_discard(0);
+    if (8 * nl > static_cast<std::size_t>(dm.ntri)) return;
+    const int* l = list.data();
+    const std::size_t nw = exec::compact_indices<Space>(
+        nl, [=] GDR_HD(long long j) { return j == 0 || (l[j] >> 2) != (l[j - 1] >> 2); }, watch, count);
+    int* w = watch.data();
+    Ops::for_each(nw, [=] GDR_HD(long long i) { w[i] = l[w[i]] >> 2; });
+    listed_below = dm.ntri;
+    touched.resize_discard(2 * nl + 4096);
+    touched_n.resize_discard(1);
+    touched_n.zero();
   }
 
   // Lines 5-6: splitting points, priorities, point location. Under a competition cap, only
@@ -274,7 +334,8 @@ struct Engine {
                                 kShortWalk,
                                 false,
                                 0,
-                                near_levels(nl)};
+                                near_levels(nl),
+                                touch_log()};
     Ops::for_each(nl, step);
     const Candidate* ca = cand_all.data();
     const std::size_t nfar = exec::compact_indices<Space>(
@@ -449,7 +510,8 @@ struct Engine {
     lim.block_rounds = params.strategies.block_rounds;
     lim.grid_rounds = params.strategies.grid_rounds;
     const exec::ExpandListResult er = exec::expand_list<Space, 3>(
-        tuples, ns, GrowCavity{dm.view(), cand.data(), failed.data(), params.criteria.lens_cos2}, lim);
+        tuples, ns, GrowCavity{dm.view(), cand.data(), failed.data(), params.criteria.lens_cos2, touch_log()},
+        lim);
     // Deferred cavities must finish next time, or big ones would block their neighbourhood
     // forever. Points whose cavity is still growing give up this iteration.
     allow_deferment = !er.deferred();
@@ -532,7 +594,7 @@ struct Engine {
     int* pid = point_id.data();
     Ops::for_each(ns, [=] GDR_HD(long long j) { pid[j] += old_npts; });
     const MeshView mv = dm.view();
-    Ops::for_each(nt, CreateFan{mv, cand.data(), tuples.data(), failed.data(), pid, old_ntri});
+    Ops::for_each(nt, CreateFan{mv, cand.data(), tuples.data(), failed.data(), pid, old_ntri, touch_log()});
     Ops::for_each(nt, LinkFan{mv, cand.data(), tuples.data(), failed.data(), old_ntri, error.data()});
     Ops::for_each(nt, KillCavity{mv, tuples.data(), failed.data()});
     Ops::for_each(ns, WritePoints{mv, cand.data(), failed.data(), pid});
@@ -543,6 +605,7 @@ struct Engine {
     if (params.strategies.compaction && 10 * dead > dm.ntri) {
       detail::compact_triangles(dm);
       dead = 0;
+      listed_below = 0;  // renumbered: the work list no longer names the triangles
     }
     clock.template stop<Space>("compact");
   }

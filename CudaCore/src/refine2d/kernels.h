@@ -325,33 +325,68 @@ GDR_HD_INLINE int collect_mask(int flags) {
   return ((flags & kCollectBits) >> kCollectShift) | ((flags / kSplitEdge0) & 7);
 }
 
-// The mask's entry count goes to aux, which the engine scans in place into list offsets (no
-// per-triangle arrays beyond the mesh's own).
+// Triangle t's entry count, its static mask computed first when it is new.
+GDR_HD_INLINE int collect_count(const MeshView& m, const Criteria& c, int t) {
+  int f = m.tflag[t];
+  if ((f & kFresh) && !(f & kDead)) {
+    f = (f & ~(kFresh | kCollectBits)) | (static_collect_mask(m, c, t) << kCollectShift);
+    m.tflag[t] = f;
+  }
+  const int mask = collect_mask(f);
+  return (mask & 1) + ((mask >> 1) & 1) + ((mask >> 2) & 1) + ((mask >> 3) & 1);
+}
+
+GDR_HD_INLINE void write_elements(const MeshView& m, int t, int o, int* list) {
+  const int mask = collect_mask(m.tflag[t]);
+  for (int k = 0; k < 4; ++k)
+    if (mask & (1 << k)) list[o++] = 4 * t + k;
+}
+
+// Over the whole mesh: the entry count goes to aux, which the engine scans in place into
+// list offsets (no per-triangle arrays beyond the mesh's own).
 struct CollectMask {
   MeshView m;
   Criteria c;
-  GDR_HD void operator()(long long i) const {
-    const int t = static_cast<int>(i);
-    int f = m.tflag[t];
-    if ((f & kFresh) && !(f & kDead)) {
-      f = (f & ~(kFresh | kCollectBits)) | (static_collect_mask(m, c, t) << kCollectShift);
-      m.tflag[t] = f;
-    }
-    const int mask = collect_mask(f);
-    m.aux[t] = (mask & 1) + ((mask >> 1) & 1) + ((mask >> 2) & 1) + ((mask >> 3) & 1);
-  }
+  GDR_HD void operator()(long long i) const { m.aux[i] = collect_count(m, c, static_cast<int>(i)); }
 };
 
 // Expands the masks into the element list (t*4 + slot) at the scanned offsets.
 struct ExpandElements {
   MeshView m;
   int* list;
-  GDR_HD void operator()(long long i) const {
-    const int t = static_cast<int>(i);
-    const int mask = collect_mask(m.tflag[t]);
-    int o = m.aux[t];
-    for (int k = 0; k < 4; ++k)
-      if (mask & (1 << k)) list[o++] = 4 * t + k;
+  GDR_HD void operator()(long long i) const { write_elements(m, static_cast<int>(i), m.aux[i], list); }
+};
+
+// The same over a work list of triangles (increasing), with counts and offsets of its own.
+struct CollectMaskAt {
+  MeshView m;
+  Criteria c;
+  const int* tris;
+  int* cnt;
+  GDR_HD void operator()(long long i) const { cnt[i] = collect_count(m, c, tris[i]); }
+};
+
+struct ExpandElementsAt {
+  MeshView m;
+  const int* tris;
+  const int* off;
+  int* list;
+  GDR_HD void operator()(long long i) const { write_elements(m, tris[i], off[i], list); }
+};
+
+// Old triangles whose collect mask may have grown since the last collect: an edge flagged
+// for splitting, or a split subsegment across (kFresh again). The CPU's work-list collect
+// looks at them besides the last list and the new triangles (Engine::collect); the GPU
+// scans the whole mesh and logs nothing (ids null). Past `cap` the log is full and the
+// next collect scans the whole mesh.
+struct TouchLog {
+  int* ids = nullptr;
+  int* n = nullptr;
+  int cap = 0;
+  GDR_HD_INLINE void add(int t) const {
+    if (!ids) return;
+    const int k = exec::atomic_add(n, 1);
+    if (k < cap) ids[k] = t;
   }
 };
 
@@ -568,6 +603,7 @@ struct ComputeSplittingPoints {
   bool far_only;
   u64 far_below;
   const int* near_level;  // graded order: smallest bad level near each triangle (null: off)
+  TouchLog touched = {};  // triangles with an edge flagged for splitting
   GDR_HD void operator()(long long j) const {
     const int e = list[j];
     const int t = e >> 2, k = e & 3;
@@ -626,6 +662,7 @@ struct ComputeSplittingPoints {
       if (is_subseg(m, u, exit) || m.tn[3 * u + exit] < 0) {
         if (!is_subseg(m, u, exit)) return;  // outside an unconstrained boundary: cannot happen
         exec::atomic_or(&m.tflag[u], kSplitEdge0 << exit);
+        touched.add(u);
         make_segment_candidate(m, u, exit, kClassWalkSegment, id, c, cand);
         return;
       }
@@ -691,6 +728,7 @@ struct GrowCavity {
   const Candidate* cand;
   int* failed;
   double lens_cos2;
+  TouchLog touched = {};  // triangles with an edge flagged for splitting
   GDR_HD int operator()(long long, CavityTuple& h, CavityTuple* out) const {
     const Candidate& c = cand[h.pt];
     if (exec::volatile_load(&failed[h.pt])) {
@@ -734,6 +772,7 @@ struct GrowCavity {
         if (c.kind == 1 && encroaches(pt(m, m.tv[3 * t + next3(e)]), pt(m, m.tv[3 * t + prev3(e)]),
                                       p, lens_cos2)) {
           exec::atomic_or(&m.tflag[t], kSplitEdge0 << e);
+          touched.add(t);
           failed[h.pt] = 1;
           return n;
         }
@@ -883,6 +922,7 @@ struct CreateFan {
   const int* failed;
   const int* point_id;  // new vertex index of each candidate
   int old_ntri;
+  TouchLog touched = {};  // the triangle across a split subsegment
   GDR_HD void operator()(long long i) const {
     const CavityTuple& h = tuples[i];
     if (h.state != kTupleCavity || failed[h.pt]) return;
@@ -921,6 +961,7 @@ struct CreateFan {
       if (split) {
         exec::atomic_and(&m.tflag[outer / 3], ~((kSubseg0 | kSplitEdge0) << (outer % 3)));
         exec::atomic_or(&m.tflag[outer / 3], kFresh);
+        touched.add(outer / 3);
       } else {
         if (m.tflag[t] & (kSplitEdge0 << e)) flags |= kSplitEdge0 << 2;
         if (is_subseg(m, t, e)) flags |= kSubseg0 << 2;
