@@ -31,6 +31,7 @@ struct Strategies {
   bool grid_rounds = true;   // large ExpandList windows run their rounds in one grid-wide launch
   bool worst_first = true;   // triangles bad by shape alone smallest first, not larger first
   bool graded = true;        // bad triangles wait for much smaller bad triangles nearby
+  bool work_list = true;     // CPU: collect from the last list and the changed triangles
 };
 
 struct EngineParams {
@@ -244,30 +245,34 @@ struct Engine {
   // counts places the entries (t*4 + slot), so collecting needs no arrays of its own.
   std::size_t collect() {
     std::size_t nl = 0;
-    if (!collect_listed(nl)) {
+    const bool listed = collect_listed(nl);
+    if (!listed) {
       Ops::for_each(dm.ntri, CollectMask{dm.view(), crit});
       int* cnt = dm.aux.data();
       nl = static_cast<std::size_t>(Ops::exclusive_scan(cnt, cnt, dm.ntri));
       list.resize_discard(nl);
       if (nl) Ops::for_each(dm.ntri, ExpandElements{dm.view(), list.data()});
     }
-    if constexpr (!Ops::is_gpu) watch_list(nl);
-    clock.template stop<Space>("collect");
+    if constexpr (!Ops::is_gpu)
+      if (params.strategies.work_list) watch_list(nl);
+    clock.template stop<Space>(listed ? "collect, listed" : "collect");
     return nl;
   }
 
   // The CPU's work list. Late iterations split a few hundred elements of a mesh of millions:
   // one thread spent a quarter of its refinement of the generated 1M-segment map in 74 such
   // iterations of 86, mostly in passes over the whole mesh. A triangle's elements are all
-  // in its flags and can only appear when it is new or when its flags change (TouchLog), so
-  // the triangles of the last list, the new ones (appended since: [listed_below, ntri)) and
-  // the touched ones hold every element. Sorted, they give the same list as the whole-mesh
-  // scan, in the same order: the same mesh. The GPU scans the whole mesh (three launches).
+  // in its flags and can only appear when it is new or when an edge of it is flagged for
+  // splitting (logged: TouchLog), so the triangles of the last list, the new ones (appended
+  // since: [listed_below, ntri)) and the logged ones hold every element. Sorted, they give
+  // the same list as the whole-mesh scan, in the same order: the same mesh (one thread:
+  // the generated 1M-segment map's collect 2.05 -> 0.75 s of 15 s). The GPU scans the whole
+  // mesh (three launches).
   Buf<int> watch, pending, touched, touched_n;
   int listed_below = 0;  // 0: scan the whole mesh next (first iteration, after compaction)
   TouchLog touch_log() {
-    if constexpr (Ops::is_gpu) return {};
-    else return {touched.data(), touched_n.data(), static_cast<int>(touched.size())};
+    if (Ops::is_gpu || !listed_below) return {};  // the next collect scans the whole mesh
+    return {touched.data(), touched_n.data(), static_cast<int>(touched.size())};
   }
   bool collect_listed(std::size_t& nl) {
     if constexpr (Ops::is_gpu) {
@@ -594,7 +599,7 @@ struct Engine {
     int* pid = point_id.data();
     Ops::for_each(ns, [=] GDR_HD(long long j) { pid[j] += old_npts; });
     const MeshView mv = dm.view();
-    Ops::for_each(nt, CreateFan{mv, cand.data(), tuples.data(), failed.data(), pid, old_ntri, touch_log()});
+    Ops::for_each(nt, CreateFan{mv, cand.data(), tuples.data(), failed.data(), pid, old_ntri});
     Ops::for_each(nt, LinkFan{mv, cand.data(), tuples.data(), failed.data(), old_ntri, error.data()});
     Ops::for_each(nt, KillCavity{mv, tuples.data(), failed.data()});
     Ops::for_each(ns, WritePoints{mv, cand.data(), failed.data(), pid});

@@ -374,11 +374,12 @@ struct ExpandElementsAt {
   GDR_HD void operator()(long long i) const { write_elements(m, tris[i], off[i], list); }
 };
 
-// Old triangles whose collect mask may have grown since the last collect: an edge flagged
-// for splitting, or a split subsegment across (kFresh again). The CPU's work-list collect
-// looks at them besides the last list and the new triangles (Engine::collect); the GPU
-// scans the whole mesh and logs nothing (ids null). Past `cap` the log is full and the
-// next collect scans the whole mesh.
+// Old triangles whose collect mask may have grown since the last collect: those with an edge
+// flagged for splitting. (A split subsegment's triangle across, kFresh again, can only lose
+// elements: its edge is no longer a subsegment, and whether it is bad depends on its corners
+// alone.) The CPU's work-list collect looks at them besides the last list and the new
+// triangles (Engine::collect); the GPU scans the whole mesh and logs nothing (ids null).
+// Past `cap` the log is full and the next collect scans the whole mesh.
 struct TouchLog {
   int* ids = nullptr;
   int* n = nullptr;
@@ -922,7 +923,6 @@ struct CreateFan {
   const int* failed;
   const int* point_id;  // new vertex index of each candidate
   int old_ntri;
-  TouchLog touched = {};  // the triangle across a split subsegment
   GDR_HD void operator()(long long i) const {
     const CavityTuple& h = tuples[i];
     if (h.state != kTupleCavity || failed[h.pt]) return;
@@ -961,7 +961,6 @@ struct CreateFan {
       if (split) {
         exec::atomic_and(&m.tflag[outer / 3], ~((kSubseg0 | kSplitEdge0) << (outer % 3)));
         exec::atomic_or(&m.tflag[outer / 3], kFresh);
-        touched.add(outer / 3);
       } else {
         if (m.tflag[t] & (kSplitEdge0 << e)) flags |= kSplitEdge0 << 2;
         if (is_subseg(m, t, e)) flags |= kSubseg0 << 2;

@@ -70,10 +70,11 @@ r2d::Strategies strategies_from_environment() {
         else if (name == "grid_rounds") s.grid_rounds = false;
         else if (name == "worst_first") s.worst_first = false;
         else if (name == "graded") s.graded = false;
+        else if (name == "work_list") s.work_list = false;
         else return false;
         return true;
       },
-      "s1, s3, s4, s5, touching, block_rounds, grid_rounds, worst_first, graded");
+      "s1, s3, s4, s5, touching, block_rounds, grid_rounds, worst_first, graded, work_list");
   return s;
 }
 

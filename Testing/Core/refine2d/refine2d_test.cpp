@@ -467,6 +467,57 @@ TEST_P(Refine2d, GradedOrderKeepsAMapNearTriangle) {
   EXPECT_LE(graded.stats.steiner_points * 101 / 100, plain.stats.steiner_points);
 }
 
+// The CPU's work-list collect (issue 14) looks only at the last list's triangles, the new
+// ones and those whose flags changed; it must find exactly what a scan of the whole mesh
+// finds. On one thread both give the same mesh, point for point, on a map whose segments
+// are split with triangles on both sides and whose circumcentres are often refused for
+// encroaching (the flags the log must catch).
+TEST_P(Refine2d, WorkListCollectsWhatTheWholeMeshScanFinds) {
+  if (GetParam() != Backend::Cpu) GTEST_SKIP() << "the work list is the CPU backend's";
+  struct Case {
+    std::string name;
+    Pslg g;
+    double angle;
+    gdr::EncroachMode mode;
+  };
+  std::vector<Case> cases = {{"wobbly map", wobbly_grid_map(24, 8, 5), 30, gdr::EncroachMode::Chew},
+                             {"wobbly map", wobbly_grid_map(24, 8, 5), 25, gdr::EncroachMode::Ruppert}};
+  // Here a walk that ran into a subsegment flags it in an iteration where it is not split
+  // (a log without walks gave one point more).
+  const auto world = std::filesystem::path(GDR_SHARED_DATA_DIR) / "pslg" / "world_land_110m.poly";
+  if (std::filesystem::exists(world))
+    cases.push_back({"world map", gdr::io::read_poly(world.string()), 20, gdr::EncroachMode::Chew});
+  else
+    std::printf("no shared data at %s: the world map is left out\n", world.string().c_str());
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name + " at " + std::to_string(c.angle));
+    auto o = options();
+    o.min_angle = c.angle;
+    o.mode = c.mode;
+    o.deterministic = true;
+    const auto listed = mesh(c.g, o);
+    setenv("GDR_DISABLE", "work_list", 1);
+    const auto scanned = mesh(c.g, o);
+    unsetenv("GDR_DISABLE");
+    const auto phase = [](const gdr::Refine2dResult& r, const std::string& name) {
+      for (const auto& p : r.stats.phases)
+        if (p.name == name) return true;
+      return false;
+    };
+    EXPECT_TRUE(phase(listed, "collect, listed"));  // the work list did collect
+    EXPECT_FALSE(phase(scanned, "collect, listed"));
+    EXPECT_GT(listed.stats.steiner_points, 5000);
+    EXPECT_EQ(listed.stats.iterations, scanned.stats.iterations);
+    ASSERT_EQ(listed.mesh.points.size(), scanned.mesh.points.size());
+    ASSERT_EQ(listed.mesh.triangles.size(), scanned.mesh.triangles.size());
+    for (std::size_t i = 0; i < listed.mesh.points.size(); ++i) {
+      ASSERT_EQ(listed.mesh.points[i].x, scanned.mesh.points[i].x) << i;
+      ASSERT_EQ(listed.mesh.points[i].y, scanned.mesh.points[i].y) << i;
+    }
+    EXPECT_TRUE(listed.mesh.triangles == scanned.mesh.triangles);
+  }
+}
+
 // Edges that are not locally Delaunay, subsegments included (unconstrained).
 std::size_t non_delaunay_edges(gdr::TriMesh m) {
   m.subsegments.clear();
