@@ -198,7 +198,7 @@ void print_summary(const ArgsTet& a, const Surface& input, const QualityTetResul
   if (s.blocked_segments > 0)
     info.row({"", with_commas(s.blocked_segments) + " input segments left unsplit: their splits kept failing "
                                                       "(a nearly coplanar facet beside them" +
-                      (o.coplanar_angle > 0 ? std::string(")")
+                      (s.coplanar_angle_used > 0 ? std::string(")")
                                             : std::string("; --coplanar-angle 0.1 merges such facets, as TetGen does)"))});
   info.row({"backend", backend_line(s.backend_used, s.device_name)});
   info.row({"peak device memory", s.backend_used == Backend::Gpu ? bytes(s.peak_device_bytes)
@@ -268,6 +268,7 @@ void write_stats_json(const std::string& path, const ArgsTet& a, const QualityTe
   j.key("stats");
   j.begin_object();
   j.field("backend_used", to_string(s.backend_used));
+  j.field("coplanar_angle_used", s.coplanar_angle_used);
   j.field("device_name", s.device_name);
   j.field("iterations", s.iterations);
   j.field("input_points", s.input_points);
@@ -411,7 +412,7 @@ int mesh_tet(const ArgsTet& a, bool& written) {
     ValidateOptions vo;
     vo.max_radius_edge = a.options.radius_edge_ratio;
     vo.check_delaunay = a.options.sliver_angle == 0;  // smoothing moves points off Delaunay
-    if (a.options.coplanar_angle > 0) vo.facet_bend_deg = kMergedFacetBend;
+    if (result.stats.coplanar_angle_used > 0) vo.facet_bend_deg = kMergedFacetBend;
     report = validate_tetmesh(result.mesh, &input, vo);
     t.check = since(t0);
     stop_if_interrupted();

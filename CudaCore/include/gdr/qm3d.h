@@ -18,6 +18,9 @@ namespace gdr {
 // up to twice that (what validation allows: ValidateOptions::facet_bend_deg).
 constexpr double kMergedFacetCone = 10.0;
 constexpr double kMergedFacetBend = 2 * kMergedFacetCone;
+// TetGen's own facet tolerance (degrees): the coplanar_angle of the retry when TetGen stops
+// on an internal assertion (flat faces of a part turned to an angle).
+constexpr double kTetGenFacetTolerance = 0.1;
 
 struct QualityTetOptions {
   // Largest radius-edge ratio allowed (TetGen's -q B): at least 1.0; 0 turns it off.
@@ -34,7 +37,9 @@ struct QualityTetOptions {
   // follows the input within that bend instead of keeping every input edge (TetGen's -p
   // facet tolerance, 0.1 degrees by default there). A merged facet bends at most
   // kMergedFacetCone degrees in all; beyond, a segment stays. 0 (default): only exactly
-  // coplanar triangles merge, and every input edge between two facets is kept. At most 5.
+  // coplanar triangles merge, and every input edge between two facets is kept (unless
+  // TetGen stops on an internal assertion: then the tetrahedralization is tried again,
+  // with a warning, at kTetGenFacetTolerance). At most 5.
   double coplanar_angle = 0.0;
   bool refine = true;      // false: only the constrained Delaunay tetrahedralization
   // Sliver removal after refinement (TetGen's -O, by vertex smoothing only): interior
@@ -56,6 +61,9 @@ struct QualityTetStats {
   long long input_segments = 0;
   long long duplicate_points_merged = 0;
   long long duplicate_triangles_merged = 0;
+  // The coplanar_angle in effect: the option's, or kTetGenFacetTolerance after TetGen
+  // stopped on an assertion (validate with ValidateOptions::facet_bend_deg when > 0).
+  double coplanar_angle_used = 0;
   long long cdt_steiner_points = 0;     // added by the initial CDT (boundary recovery)
   long long interior_seeds = 0;         // lattice points put inside with the CDT (cdt3d.h)
   long long steiner_points = 0;         // added in total (CDT and refinement)

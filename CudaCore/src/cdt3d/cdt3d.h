@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "gdr/error.h"
 #include "gdr/progress.h"
 #include "gdr/pslg.h"
 #include "mesh3d/host_mesh.h"
@@ -86,6 +87,16 @@ Plc check_surface(const Surface& surface, const CheckOptions& options = {},
 // isolated points; those in the domain come back as free points after the Steiner points.
 m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks = {},
                              const std::vector<double>& seeds = {});
+
+// TetGen stopped on one of its internal assertions (which would abort the process; see
+// cdt_tetgen.cpp). Seen on parts turned to an angle, whose flat faces meet at bends of
+// rounding size, each edge between them a segment: merging such faces avoids it.
+class TetGenAborted : public Error {
+ public:
+  TetGenAborted()
+      : Error(Status::InternalError,
+              "TetGen stopped on one of its internal assertions (printed on the standard error)") {}
+};
 
 // The Delaunay tetrahedralization of the points xyz (3 per point; no constraints, TetGen
 // without -p): every tetrahedron of the convex hull, neighbours linked (-1 on the hull), no

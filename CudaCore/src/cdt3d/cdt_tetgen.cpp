@@ -27,12 +27,16 @@
 #define TETLIBRARY
 #include <tetgen.h>
 
+#include <csetjmp>
+#include <csignal>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <mutex>
 #include <numeric>
 #include <unordered_map>
 
@@ -95,7 +99,53 @@ void fill_input(const Plc& plc, const std::vector<double>& seeds, tetgenio& in) 
   }
 }
 
-// Runs TetGen with `switches`; its failures (thrown exit codes) become gdr::Error.
+// TetGen's assertions abort the process: the Debian library is built with them, and a part
+// turned to an angle (flat faces planar only up to rounding, each edge between them a
+// segment) failed one in facet recovery (tetgen.cxx 16432, fillcavity), which killed gdr,
+// and would kill ParaView with the plugin. While TetGen runs, SIGABRT from its thread jumps
+// back here and becomes an error (TetGen's memory for that run is lost). The handler is
+// installed for the call only; an abort on any other thread still ends the process.
+thread_local sigjmp_buf* tetgen_escape = nullptr;
+std::mutex tetgen_guard_lock;
+int tetgen_guards = 0;
+struct sigaction tetgen_old_abort;
+
+void on_tetgen_abort(int) {
+  if (tetgen_escape) siglongjmp(*tetgen_escape, 1);
+  sigaction(SIGABRT, &tetgen_old_abort, nullptr);
+  raise(SIGABRT);
+}
+
+struct AbortGuard {
+  AbortGuard() {
+    std::lock_guard<std::mutex> g(tetgen_guard_lock);
+    if (tetgen_guards++ == 0) {
+      struct sigaction sa {};
+      sa.sa_handler = on_tetgen_abort;
+      sigemptyset(&sa.sa_mask);
+      sigaction(SIGABRT, &sa, &tetgen_old_abort);
+    }
+  }
+  ~AbortGuard() {
+    tetgen_escape = nullptr;
+    std::lock_guard<std::mutex> g(tetgen_guard_lock);
+    if (--tetgen_guards == 0) sigaction(SIGABRT, &tetgen_old_abort, nullptr);
+  }
+};
+
+// tetrahedralize behind the guard: false when TetGen aborted. (No C++ objects of ours live
+// between the jump and its target.)
+bool tetrahedralize_guarded(tetgenbehavior* behavior, tetgenio* in, tetgenio* out) {
+  AbortGuard guard;
+  sigjmp_buf here;
+  if (sigsetjmp(here, 1) != 0) return false;
+  tetgen_escape = &here;
+  tetrahedralize(behavior, in, out);
+  tetgen_escape = nullptr;
+  return true;
+}
+
+// Runs TetGen with `switches`; its failures (thrown exit codes, aborts) become gdr::Error.
 void run_tetgen(const std::string& switches, tetgenio& in, tetgenio& out) {
   tetgenbehavior behavior;
   std::vector<char> buffer(switches.begin(), switches.end());
@@ -103,7 +153,7 @@ void run_tetgen(const std::string& switches, tetgenio& in, tetgenio& out) {
   if (!behavior.parse_commandline(buffer.data()))
     internal("TetGen rejected the switches '" + switches + "'");
   try {
-    tetrahedralize(&behavior, &in, &out);
+    if (!tetrahedralize_guarded(&behavior, &in, &out)) throw TetGenAborted();
   } catch (int code) {
     switch (code) {
       case 1: throw Error(Status::OutOfDeviceMemory, "TetGen ran out of memory");
@@ -487,6 +537,8 @@ m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks, const s
   stamp("fill TetGen input");
   try {
     run_tetgen("pcnO0JQ", in, out);
+  } catch (const TetGenAborted&) {
+    throw;  // -Y on such input gave a mesh that was not constrained Delaunay: the caller merges
   } catch (const Error& e) {
     if (e.status() == Status::OutOfDeviceMemory) throw;
     if (callbacks.warning)

@@ -169,7 +169,8 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
   cdt3d::CheckOptions check;
   check.coplanar_angle = options.coplanar_angle;
   check.merge_cone = kMergedFacetCone;
-  const cdt3d::Plc plc = cdt3d::check_surface(input, check, cb);
+  cdt3d::Plc plc = cdt3d::check_surface(input, check, cb);
+  st.coplanar_angle_used = options.coplanar_angle;
   st.input_seconds = since(t_start);
   st.duplicate_points_merged = plc.duplicate_points_merged;
   st.duplicate_triangles_merged = plc.duplicate_triangles_merged;
@@ -181,10 +182,29 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
   progress(0.02, "constrained Delaunay tetrahedralization");
   auto t0 = Clock::now();
   const qm3d::Strategies strategies = qm3d::strategies_from_environment();
-  const std::vector<double> seeds = options.refine && strategies.interior_seeds
-                                        ? cdt3d::interior_seeds(plc, kSeedSpacing)
-                                        : std::vector<double>{};
-  m3d::HostTetMesh mesh = cdt3d::initial_cdt(plc, cb, seeds);
+  const auto cdt = [&] {
+    const std::vector<double> seeds = options.refine && strategies.interior_seeds
+                                          ? cdt3d::interior_seeds(plc, kSeedSpacing)
+                                          : std::vector<double>{};
+    return cdt3d::initial_cdt(plc, cb, seeds);
+  };
+  m3d::HostTetMesh mesh;
+  try {
+    mesh = cdt();
+  } catch (const cdt3d::TetGenAborted& e) {
+    // A part turned to an angle: its flat faces meet at bends of rounding size, each edge
+    // between them a segment. Merged within TetGen's own tolerance, TetGen meshes them.
+    if (options.coplanar_angle >= kTetGenFacetTolerance) throw;
+    if (cb.warning)
+      cb.warning(std::string(e.what()) +
+                 "; input faces that meet within 0.1 degrees of flat are merged (as with "
+                 "--coplanar-angle 0.1) and the tetrahedralization is tried again");
+    check.coplanar_angle = st.coplanar_angle_used = kTetGenFacetTolerance;
+    plc = cdt3d::check_surface(input, check, cb);
+    st.input_segments = static_cast<long long>(plc.segments.size());
+    st.input_facets = static_cast<long long>(plc.facet_origin.size());
+    mesh = cdt();
+  }
   st.cdt_seconds = since(t0);
   st.interior_seeds = std::count(mesh.ptype.begin(), mesh.ptype.end(), m3d::kFreePoint);
   st.cdt_steiner_points = mesh.points() - static_cast<long long>(plc.points.size()) - st.interior_seeds;
