@@ -3,6 +3,7 @@
 // with the CGAL path.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -73,6 +74,68 @@ int locate(const exec::HostVector<int>& tv, const exec::HostVector<int>& tn, con
 
 }  // namespace
 
+// With the convex hull kept (-c), points that lie within rounding of a hull edge, but not on
+// it, leave slivers between the edge and them that no angle bound can mesh: a map turned by
+// a few degrees, whose straight border points were rounded off their line (by 1e-17 to 1e-15
+// of the edge's length there; up to 1e-11 where coordinates are large next to the edges),
+// was refused for asking 1e12-1e15 Steiner points, and Triangle 1.6 ran out of 16 GB on it.
+// A boundary triangle on a hull edge whose apex lies within kHullSliver of the edge's length
+// from it (an angle below 1e-9 radians, which no refinement could mend) is left out, so the
+// apex joins the boundary (the domain loses that sliver), and so on for the triangles that
+// come to the boundary. Points rounded just outside the line become hull vertices instead,
+// and the flat triangles between them stay (README, Known limits).
+constexpr double kHullSliver = 1e-9;
+void peel_hull_slivers(const CleanPslg& g, const CdtTriangles& c, std::vector<char>& outside) {
+  const int ninput = static_cast<int>(g.segments.size());
+  const int nt = static_cast<int>(c.tv.size() / 3);
+  const int n = static_cast<int>(g.points.size());
+  auto boundary_hull_edge = [&](int t, int i) {
+    const int nb = c.tn[3 * t + i], s = c.tseg[3 * t + i];
+    return (nb < 0 || outside[nb / 3]) && (s < 0 || s >= ninput);
+  };
+  auto sliver = [&](int t) {
+    for (int i = 0; i < 3; ++i) {
+      if (!boundary_hull_edge(t, i)) continue;
+      const int v = c.tv[3 * t + i], p = c.tv[3 * t + (i + 1) % 3], q = c.tv[3 * t + (i + 2) % 3];
+      if (v >= n || p >= n || q >= n) continue;  // the parallel CDT's bounding triangle
+      const Point2 &P = g.points[p], &Q = g.points[q], &V = g.points[v];
+      const double ux = Q.x - P.x, uy = Q.y - P.y, wx = V.x - P.x, wy = V.y - P.y;
+      const double len2 = ux * ux + uy * uy, along = ux * wx + uy * wy;
+      if (std::fabs(ux * wy - uy * wx) <= kHullSliver * len2 && along > 0 && along < len2) return true;
+    }
+    return false;
+  };
+  // Never at the cost of an input segment or point: each input segment keeps a triangle on
+  // one side and each point one triangle (collinear points with one just off their line, whose
+  // slivers run between input segments, kept them only so).
+  std::vector<int> kept_at;  // per point: kept triangles
+  auto keeps_input = [&](int t) {
+    for (int i = 0; i < 3; ++i) {
+      if (kept_at[c.tv[3 * t + i]] <= 1) return false;
+      const int s = c.tseg[3 * t + i], nb = c.tn[3 * t + i];
+      if (s >= 0 && s < ninput && (nb < 0 || outside[nb / 3])) return false;
+    }
+    return true;
+  };
+  std::vector<int> stack;
+  for (int t = 0; t < nt; ++t)
+    if (!outside[t] && sliver(t)) stack.push_back(t);
+  if (stack.empty()) return;
+  kept_at.assign(n + 3, 0);
+  for (int t = 0; t < nt; ++t)
+    if (!outside[t])
+      for (int i = 0; i < 3; ++i) ++kept_at[c.tv[3 * t + i]];
+  while (!stack.empty()) {
+    const int t = stack.back();
+    stack.pop_back();
+    if (outside[t] || !sliver(t) || !keeps_input(t)) continue;
+    outside[t] = 1;
+    for (int i = 0; i < 3; ++i) --kept_at[c.tv[3 * t + i]];
+    for (int i = 0; i < 3; ++i)
+      if (c.tn[3 * t + i] >= 0 && !outside[c.tn[3 * t + i] / 3]) stack.push_back(c.tn[3 * t + i] / 3);
+  }
+}
+
 HostMesh assemble_cdt(const CleanPslg& g, CdtTriangles c) {
   const int n = static_cast<int>(g.points.size());
   const int nt_all = static_cast<int>(c.tv.size() / 3);
@@ -93,6 +156,8 @@ HostMesh assemble_cdt(const CleanPslg& g, CdtTriangles c) {
         stack.push_back(c.tn[3 * t + i] / 3);
   }
   step("exterior flood");
+  peel_hull_slivers(g, c, outside);
+  step("hull slivers");
   // Kept triangles numbered in order (a scan), then copied and relinked in parallel.
   std::vector<int> id(nt_all, -1);
   int nt = 0;

@@ -56,8 +56,9 @@ struct CdtTriangles {
 };
 
 // The engine's input from a CDT: what the seeds and holes reach without crossing a segment
-// is removed, domain-boundary edges that are not input segments become hull segments, and
-// regions are numbered by flooding from their seeds.
+// is removed, so are slivers between a convex-hull edge and points within rounding of it
+// (cdt_parallel.cpp, peel_hull_slivers), domain-boundary edges that are not input segments
+// become hull segments, and regions are numbered by flooding from their seeds.
 HostMesh assemble_cdt(const CleanPslg& g, CdtTriangles triangles);
 
 // The same CDT as initial_cdt, built in parallel (cdt_engine.h) on the GPU or CPU threads;
