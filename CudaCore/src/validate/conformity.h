@@ -128,11 +128,23 @@ double coordinate_slack(const std::vector<P>& points) {
 
 // True when a chain of subsegments leads from mesh vertex a to b, every intermediate vertex
 // within `tolerance * |ab| + slack` of segment ab and strictly progressing from a towards b.
-// `slack`: the rounding of the coordinates themselves (coordinate_slack).
+// `slack`: the rounding of the coordinates themselves (coordinate_slack). Distances are taken
+// on coordinates scaled by a power of two (exact) to about 1: at 1e95 and beyond the squares
+// overflowed to infinity, and every vertex passed (a 2D star at 1e156 failed --check only
+// when scaled down to 3e5).
 template <class P>
 bool follow_segment(const std::vector<P>& points, const SubsegmentGraph& graph, int a, int b,
                     double tolerance, double slack = 0) {
-  const auto pa = xyz(points[a]), pb = xyz(points[b]);
+  const auto qa = xyz(points[a]), qb = xyz(points[b]);
+  double m = 0;
+  for (int i = 0; i < 3; ++i) m = std::max({m, std::fabs(qa[i]), std::fabs(qb[i])});
+  const int k = m > 0 && std::isfinite(m) ? -std::ilogb(m) : 0;
+  const auto scaled = [k](std::array<double, 3> q) {
+    for (double& v : q) v = std::ldexp(v, k);
+    return q;
+  };
+  const auto pa = scaled(qa), pb = scaled(qb);
+  slack = std::ldexp(slack, k);
   const double d[3] = {pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]};
   const double len2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
   int cur = a;
@@ -146,7 +158,7 @@ bool follow_segment(const std::vector<P>& points, const SubsegmentGraph& graph, 
         best = b;
         break;
       }
-      const auto pw = xyz(points[w]);
+      const auto pw = scaled(xyz(points[w]));
       const double r[3] = {pw[0] - pa[0], pw[1] - pa[1], pw[2] - pa[2]};
       const double t = (r[0] * d[0] + r[1] * d[1] + r[2] * d[2]) / len2;
       if (!(t > progress && t < 1 && t < best_t)) continue;

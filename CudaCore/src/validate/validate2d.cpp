@@ -201,8 +201,8 @@ ValidationReport validate_trimesh(const TriMesh& mesh, const Pslg* input,
             static_cast<std::size_t>(e[0]) < nv && static_cast<std::size_t>(e[1]) < nv)
           chains[s].push_back(e);
       }
-      for (const Point2& p : P) extent = std::max({extent, std::fabs(p.x), std::fabs(p.y)});
     }
+    for (const Point2& p : P) extent = std::max({extent, std::fabs(p.x), std::fabs(p.y)});
     std::vector<std::uint8_t> seg_ok(S.size(), 1);
     const std::int64_t ns = static_cast<std::int64_t>(S.size());
     const std::int64_t ni = static_cast<std::int64_t>(input->points.size());
@@ -218,7 +218,9 @@ ValidationReport validate_trimesh(const TriMesh& mesh, const Pslg* input,
       // (A segment given twice, or overlapping another, is sourced to one of them only.)
       else if (a != b)
         seg_ok[s] = (sourced && follow_sourced_chain(P, chains[s], a, b, options.segment_tolerance, extent)) ||
-                    validate::follow_segment(P, graph, a, b, options.segment_tolerance) ||
+                    // Overlapping segments are sourced to one of them: the other's chain is
+                    // walked, with the same slack for rounded intersection points.
+                    validate::follow_segment(P, graph, a, b, options.segment_tolerance, std::ldexp(extent, -38)) ||
                     std::binary_search(mesh.removed_segments.begin(), mesh.removed_segments.end(), int(s));
     }
     for (std::size_t s = 0; s < S.size(); ++s) {
