@@ -464,6 +464,34 @@ std::string split_summary(const CleanPslg& g) {
   return m.str();
 }
 
+// Every piece must lie on the input segment it came from, within the rounding of the
+// intersection points (merged within eps, in up to 8 rounds) and a relative 1e-9. CGAL's
+// splitting with inexact intersections once routed a segment of a star of 36 crossing near
+// one point through a far endpoint: its second half was missing from the mesh, silently.
+// Such a split is refused.
+void check_pieces_on_their_segments(const Pslg& in, const CleanPslg& g, double eps) {
+  for (std::size_t k = 0; k < g.segments.size(); ++k) {
+    const int o = g.segment_origin[k];
+    const Point2 &a = in.points[in.segments[o][0]], &b = in.points[in.segments[o][1]];
+    const double dx = b.x - a.x, dy = b.y - a.y, len = std::hypot(dx, dy);
+    const double slack = 16 * eps + 1e-9 * len;  // eps: each of up to 8 merging rounds
+    for (const int v : g.segments[k]) {
+      const Point2& p = g.points[v];
+      const double along = ((p.x - a.x) * dx + (p.y - a.y) * dy) / len;
+      const double off = std::fabs((p.x - a.x) * dy - (p.y - a.y) * dx) / len;
+      if (off <= slack && along >= -slack && along <= len + slack) continue;
+      const long long f = in.first_index;
+      std::ostringstream m;
+      m << "segment " << o + f << " (points " << in.segments[o][0] + f << " and " << in.segments[o][1] + f
+        << ") could not be split consistently where it crosses others: many segments cross within "
+           "rounding of one another, and its pieces reach "
+        << (g.point_origin[v] >= 0 ? "point " + std::to_string(g.point_origin[v] + f) : std::string("an intersection point"))
+        << ", off the segment; give the segments one input point where they cross";
+      throw Error(Status::InvalidInput, m.str());
+    }
+  }
+}
+
 }  // namespace
 
 CleanPslg clean_input(const Pslg& in, const Refine2dOptions& o, const Callbacks& cb, bool on_gpu) {
@@ -573,6 +601,7 @@ CleanPslg clean_input(const Pslg& in, const Refine2dOptions& o, const Callbacks&
     }
     conflicts = find_segment_conflicts(g.points, g.segments, count_limit);
     if (conflicts.empty()) {
+      check_pieces_on_their_segments(in, g, eps);
       if (cb.warning) cb.warning(split_summary(g));
       return g;
     }
