@@ -35,6 +35,17 @@ struct RawCdt {
 // as vertices), from the points adjacent to the bounding triangle (cdt_parallel.cpp).
 std::vector<int> hull_segments(const double* xy, std::vector<int> candidates);
 
+// An edge that two segments share (an input segment on the convex hull is a hull segment
+// too) keeps the smaller number, the input's, whichever marks it last.
+GDR_HD inline void claim_edge(int* ts, long long e, int s) {
+  int cur = exec::volatile_load(&ts[e]);
+  while (cur < 0 || cur > s) {
+    const int seen = exec::atomic_cas(&ts[e], cur, s);
+    if (seen == cur) return;
+    cur = seen;
+  }
+}
+
 // Compaction during point insertion: each point's triangle follows its move.
 struct RenumberLocations {
   MoveTriangles move;
@@ -266,9 +277,9 @@ struct ParallelCdt {
       const long long code = segment_start(mv, v[a], a, b);
       if (code <= -2) {  // present: mark both sides
         const long long c = -2 - code;
-        ts[c] = s;
+        claim_edge(ts, c, s);
         const int nb = mv.tn[c];
-        if (nb >= 0) ts[nb] = s;
+        if (nb >= 0) claim_edge(ts, nb, s);
         st[r] = -1;
       } else if (code == -1) {
         *err = 2 + s;  // a point on the segment
@@ -483,22 +494,5 @@ struct ParallelCdt {
     clock.template stop<Space>("cdt download");
   }
 };
-
-// The whole device part: points, hull segments (when `hull`), segment recovery.
-template <class Space>
-RawCdt parallel_cdt(const std::vector<double>& xy, std::vector<int> segments, bool hull) {
-  ParallelCdt<Space> cdt;
-  cdt.triangulate_points(xy);
-  if (hull) {
-    const std::vector<int> h = hull_segments(xy.data(), cdt.hull_candidates());
-    segments.insert(segments.end(), h.begin(), h.end());
-    cdt.clock.template stop<Space>("hull");
-  }
-  cdt.recover_segments(segments);
-  RawCdt out;
-  cdt.download(out);
-  out.phases = cdt.res.phases;
-  return out;
-}
 
 }  // namespace gdr::r2d

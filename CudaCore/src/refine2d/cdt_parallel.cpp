@@ -84,7 +84,6 @@ int locate(const exec::HostVector<int>& tv, const exec::HostVector<int>& tn, con
 // apex joins the boundary (the domain loses that sliver), and so on for the triangles that
 // come to the boundary. Points rounded just outside the line become hull vertices instead,
 // and the flat triangles between them stay (README, Known limits).
-constexpr double kHullSliver = 1e-9;
 void peel_hull_slivers(const CleanPslg& g, const CdtTriangles& c, std::vector<char>& outside) {
   const int ninput = static_cast<int>(g.segments.size());
   const int nt = static_cast<int>(c.tv.size() / 3);
@@ -136,6 +135,12 @@ void peel_hull_slivers(const CleanPslg& g, const CdtTriangles& c, std::vector<ch
   }
 }
 
+void throw_empty_domain() {
+  throw Error(Status::InvalidInput,
+              "no triangles are left after removing the exterior and the holes (are the "
+              "boundary segments closed, and are the hole points inside them?)");
+}
+
 HostMesh assemble_cdt(const CleanPslg& g, CdtTriangles c) {
   const int n = static_cast<int>(g.points.size());
   const int nt_all = static_cast<int>(c.tv.size() / 3);
@@ -163,10 +168,7 @@ HostMesh assemble_cdt(const CleanPslg& g, CdtTriangles c) {
   int nt = 0;
   for (int t = 0; t < nt_all; ++t)
     if (!outside[t]) id[t] = nt++;
-  if (nt == 0)
-    throw Error(Status::InvalidInput,
-                "no triangles are left after removing the exterior and the holes (are the "
-                "boundary segments closed, and are the hole points inside them?)");
+  if (nt == 0) throw_empty_domain();
 
   step("numbering");
   HostMesh m;
@@ -242,8 +244,12 @@ HostMesh assemble_cdt(const CleanPslg& g, CdtTriangles c) {
   return m;
 }
 
-HostMesh initial_cdt_parallel(const CleanPslg& g, bool remove_exterior, bool gpu,
-                              std::vector<PhaseTime>* phases) {
+InitialCdt::InitialCdt() = default;
+InitialCdt::InitialCdt(InitialCdt&&) noexcept = default;
+InitialCdt::~InitialCdt() = default;
+
+InitialCdt initial_cdt_parallel(const CleanPslg& g, bool remove_exterior, bool gpu, bool in_space,
+                                std::vector<PhaseTime>* phases) {
   const int n = static_cast<int>(g.points.size());
   std::vector<double> xy(2 * std::size_t(n) + 6);
 #pragma omp parallel for
@@ -260,36 +266,42 @@ HostMesh initial_cdt_parallel(const CleanPslg& g, bool remove_exterior, bool gpu
   const long long ns = static_cast<long long>(g.segments.size());
 #pragma omp parallel for
   for (long long s = 0; s < ns; ++s) segments[2 * s] = g.segments[s][0], segments[2 * s + 1] = g.segments[s][1];
-  RawCdt raw;
+  // Seeds are located on the host's copy.
+  const bool assemble = in_space && g.holes.empty() && g.regions.empty();
+  ParallelCdtResult r;
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
 #if defined(GDR_HAVE_CUDA)
-  if (gpu) raw = parallel_cdt_cuda(xy, segments, !remove_exterior);
+  if (gpu) r = parallel_cdt_cuda(xy, segments, !remove_exterior, assemble);
   else
 #endif
   {
     (void)gpu;
-    raw = parallel_cdt_cpu(xy, segments, !remove_exterior);
+    r = parallel_cdt_cpu(xy, segments, !remove_exterior, assemble);
   }
   // Beside the device phases: the whole device call (set-up, transfers and memory handed
   // back included) and the domain's assembly on the host.
   const auto t1 = Clock::now();
-  raw.phases.push_back({"whole device call", std::chrono::duration<double>(t1 - t0).count()});
-  CdtTriangles c;
-  c.tv = std::move(raw.tv);
-  c.tn = std::move(raw.tn);
-  c.tseg = std::move(raw.tseg);
-  // Outside from the start: every triangle at the bounding triangle (the hull segments, or
-  // with the exterior removed the input's, stop the flood).
-  const int nt = static_cast<int>(c.tv.size() / 3);
-  for (int t = 0; t < nt; ++t)
-    if (c.tv[3 * t] >= n || c.tv[3 * t + 1] >= n || c.tv[3 * t + 2] >= n) c.exterior_seeds.push_back(t);
-  for (const Point2& h : g.holes) c.hole_tris.push_back(locate(c.tv, c.tn, xy.data(), h));
-  for (const auto& r : g.regions) c.region_tris.push_back(locate(c.tv, c.tn, xy.data(), r.point));
-  HostMesh m = assemble_cdt(g, std::move(c));
-  raw.phases.push_back({"assembly (host)", std::chrono::duration<double>(Clock::now() - t1).count()});
-  if (phases) *phases = std::move(raw.phases);
-  return m;
+  r.phases.push_back({"whole device call", std::chrono::duration<double>(t1 - t0).count()});
+  InitialCdt out;
+  out.prepared = std::move(r.prepared);
+  if (!out.prepared) {
+    CdtTriangles c;
+    c.tv = std::move(r.raw.tv);
+    c.tn = std::move(r.raw.tn);
+    c.tseg = std::move(r.raw.tseg);
+    // Outside from the start: every triangle at the bounding triangle (the hull segments, or
+    // with the exterior removed the input's, stop the flood).
+    const int nt = static_cast<int>(c.tv.size() / 3);
+    for (int t = 0; t < nt; ++t)
+      if (c.tv[3 * t] >= n || c.tv[3 * t + 1] >= n || c.tv[3 * t + 2] >= n) c.exterior_seeds.push_back(t);
+    for (const Point2& h : g.holes) c.hole_tris.push_back(locate(c.tv, c.tn, xy.data(), h));
+    for (const auto& rs : g.regions) c.region_tris.push_back(locate(c.tv, c.tn, xy.data(), rs.point));
+    out.host = assemble_cdt(g, std::move(c));
+    r.phases.push_back({"assembly (host)", std::chrono::duration<double>(Clock::now() - t1).count()});
+  }
+  if (phases) *phases = std::move(r.phases);
+  return out;
 }
 
 }  // namespace gdr::r2d

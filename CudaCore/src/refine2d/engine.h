@@ -32,6 +32,7 @@ struct Strategies {
   bool worst_first = true;   // triangles bad by shape alone smallest first, not larger first
   bool graded = true;        // bad triangles wait for much smaller bad triangles nearby
   bool work_list = true;     // CPU: collect from the last list and the changed triangles
+  bool cdt_assembly = true;  // the parallel CDT assembled where it ran (cdt_assembly.h), not on the host
 };
 
 struct EngineParams {
@@ -139,9 +140,20 @@ struct Engine {
     exec::memory_counter<Space>().peak = exec::memory_counter<Space>().current;
     const std::size_t mem_base = exec::memory_counter<Space>().current;
     dm.upload(host);
+    clock.template stop<Space>("upload");
+    refine(mem_base, out);
+  }
+  // A mesh already in the engine's memory (cdt_assembly.h: the CDT assembled there).
+  void run(DeviceMesh<Space>&& mesh, bool regions, MeshResult& out) {
+    has_regions = regions;
+    dm = std::move(mesh);
+    exec::memory_counter<Space>().peak = exec::memory_counter<Space>().current;
+    refine(exec::memory_counter<Space>().current - dm.bytes(), out);
+  }
+
+  void refine(std::size_t mem_base, MeshResult& out) {
     error.resize_discard(1);
     error.zero();
-    clock.template stop<Space>("upload");
     int idle = 0;
     for (int iter = 0; iter < params.max_iterations; ++iter) {
       if (cb.abort && cb.abort()) throw Error(Status::Aborted, "refinement aborted by the caller");
@@ -715,6 +727,14 @@ EngineResult refine_mesh(const HostMesh& host, MeshResult& out, const EnginePara
                          const Callbacks& cb) {
   Engine<Space> engine(params, cb);
   engine.run(host, out);
+  return engine.res;
+}
+
+template <class Space>
+EngineResult refine_mesh(DeviceMesh<Space>&& mesh, bool regions, MeshResult& out,
+                         const EngineParams& params, const Callbacks& cb) {
+  Engine<Space> engine(params, cb);
+  engine.run(std::move(mesh), regions, out);
   return engine.res;
 }
 

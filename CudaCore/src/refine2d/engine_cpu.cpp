@@ -1,5 +1,5 @@
 #include "exec/cpu.h"
-#include "refine2d/engine_dispatch.h"
+#include "refine2d/cdt_assembly.h"
 #include "refine2d/input.h"
 #include "refine2d/input_checks.h"
 
@@ -17,11 +17,12 @@ bool input_is_clean_cpu(const std::vector<Point2>& points, const std::vector<std
   return input_is_clean<exec::Cpu>(points, segments);
 }
 
-RawCdt parallel_cdt_cpu(const std::vector<double>& xy, const std::vector<int>& segments, bool hull) {
+ParallelCdtResult parallel_cdt_cpu(const std::vector<double>& xy, const std::vector<int>& segments,
+                                   bool hull, bool assemble) {
   struct Trim {
     ~Trim() { exec::Ops<exec::Cpu>::trim(); }
   } trim;
-  return parallel_cdt<exec::Cpu>(xy, segments, hull);
+  return parallel_cdt_assembled<exec::Cpu>(xy, segments, hull, assemble);
 }
 
 }  // namespace gdr::r2d

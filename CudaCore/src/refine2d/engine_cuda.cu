@@ -1,5 +1,5 @@
 #include "exec/cuda.cuh"
-#include "refine2d/engine_dispatch.h"
+#include "refine2d/cdt_assembly.h"
 #include "refine2d/input.h"
 #include "refine2d/input_checks.h"
 
@@ -15,9 +15,10 @@ EngineResult refine_mesh_cuda(const HostMesh& mesh, MeshResult& out, const Engin
 
 // The pool keeps the CDT's memory for the refinement that follows (refine_2d hands it back
 // when the run ends, trim_device_memory_cuda); after an error it is handed back at once.
-RawCdt parallel_cdt_cuda(const std::vector<double>& xy, const std::vector<int>& segments, bool hull) {
+ParallelCdtResult parallel_cdt_cuda(const std::vector<double>& xy, const std::vector<int>& segments,
+                                    bool hull, bool assemble) {
   try {
-    return parallel_cdt<exec::Cuda>(xy, segments, hull);
+    return parallel_cdt_assembled<exec::Cuda>(xy, segments, hull, assemble);
   } catch (...) {
     exec::Ops<exec::Cuda>::trim();
     throw;

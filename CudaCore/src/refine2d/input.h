@@ -1,6 +1,7 @@
 // Input checking and clean-up for the 2D mesher, and the initial CDT (paper Algorithm 1
 // line 1, on the CPU).
 #pragma once
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -61,10 +62,27 @@ struct CdtTriangles {
 // become hull segments, and regions are numbered by flooding from their seeds.
 HostMesh assemble_cdt(const CleanPslg& g, CdtTriangles triangles);
 
+// Slivers at the hull (cdt_parallel.cpp, peel_hull_slivers): a boundary triangle on a hull
+// edge whose apex lies within this fraction of the edge's length from it.
+constexpr double kHullSliver = 1e-9;
+
+// Refuses a domain that removing the exterior and the holes left empty.
+[[noreturn]] void throw_empty_domain();
+
 // The same CDT as initial_cdt, built in parallel (cdt_engine.h) on the GPU or CPU threads;
-// its phases' times go to `phases` when given.
-HostMesh initial_cdt_parallel(const CleanPslg& pslg, bool remove_exterior, bool gpu,
-                              std::vector<PhaseTime>* phases = nullptr);
+// with `in_space`, assembled where it was built (`prepared`, engine_dispatch.h) unless
+// hole or region seeds or slivers at the hull need the host's assembly (`host`). Its
+// phases' times go to `phases` when given.
+class PreparedCdt;
+struct InitialCdt {
+  HostMesh host;
+  std::unique_ptr<PreparedCdt> prepared;
+  InitialCdt();
+  InitialCdt(InitialCdt&&) noexcept;
+  ~InitialCdt();  // (defined where PreparedCdt is complete)
+};
+InitialCdt initial_cdt_parallel(const CleanPslg& pslg, bool remove_exterior, bool gpu, bool in_space,
+                                std::vector<PhaseTime>* phases = nullptr);
 
 // Values given at the points of `g` (`count` per point), interpolated linearly over its
 // constrained Delaunay triangulation at `queries` (Triangle interpolates point attributes at

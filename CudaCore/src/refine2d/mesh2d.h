@@ -146,6 +146,14 @@ struct DeviceMesh {
     vseg.upload(list);
   }
 
+  // Memory held, as the space's counter counts it.
+  std::size_t bytes() const {
+    return xy.capacity() * sizeof(double) + ptype.capacity() + pseg.capacity() * sizeof(int) +
+           (tv.capacity() + tn.capacity() + tflag.capacity() + mark.capacity() + aux.capacity() +
+            seg.capacity() + vseg_begin.capacity() + vseg.capacity()) *
+               sizeof(int);
+  }
+
   // Room for `tris` triangles and `pts` points, keeping contents.
   void reserve(int tris, int pts) {
     if (tris > ntri) {

@@ -27,6 +27,7 @@
 #include "predicates/predicates.h"
 #include "refine2d/engine_dispatch.h"
 #include "refine2d/input.h"
+#include "refine2d/thin_parts.h"
 #include "validate/conformity.h"
 
 namespace gdr {
@@ -55,7 +56,7 @@ r2d::Criteria make_criteria(const Refine2dOptions& o) {
   return c;
 }
 
-// Design strategies switched off for a measurement: GDR_DISABLE=s1,s3,s4,s5,touching,block_rounds,grid_rounds,worst_first,graded
+// Design strategies switched off for a measurement: GDR_DISABLE=s1,s3,s4,s5,touching,block_rounds,grid_rounds,worst_first,graded,work_list,cdt_assembly
 // (benchmarks only; see Benchmarks/README.md).
 r2d::Strategies strategies_from_environment() {
   r2d::Strategies s;
@@ -71,10 +72,11 @@ r2d::Strategies strategies_from_environment() {
         else if (name == "worst_first") s.worst_first = false;
         else if (name == "graded") s.graded = false;
         else if (name == "work_list") s.work_list = false;
+        else if (name == "cdt_assembly") s.cdt_assembly = false;
         else return false;
         return true;
       },
-      "s1, s3, s4, s5, touching, block_rounds, grid_rounds, worst_first, graded, work_list");
+      "s1, s3, s4, s5, touching, block_rounds, grid_rounds, worst_first, graded, work_list, cdt_assembly");
   return s;
 }
 
@@ -88,10 +90,22 @@ struct SizeEstimate {
   double typical = 0;
 };
 
+// From the domain's area and the triangles the area bounds ask for (`area_bounded`).
+SizeEstimate estimate_size(double area, double area_bounded, int triangles, int points,
+                           const Refine2dOptions& o) {
+  SizeEstimate e;
+  e.area = area;
+  double bounds = area_bounded;
+  if (o.max_edge_length > 0)
+    bounds = std::max(bounds, e.area / (0.433 * o.max_edge_length * o.max_edge_length));
+  e.least = std::max(static_cast<double>(triangles), bounds);
+  e.typical = std::max(4.0 * points, 2.0 * bounds);
+  return e;
+}
+
 // `region_area2`: twice the regions' area bounds by region number - 1 (EngineParams).
 SizeEstimate estimate_size(const r2d::HostMesh& m, const Refine2dOptions& o,
                            const std::vector<double>& region_area2) {
-  SizeEstimate e;
   double area_bounded = 0;  // the triangles the area bounds ask for, region by region
   double area = 0;
   const int nt = m.triangles();
@@ -108,13 +122,13 @@ SizeEstimate estimate_size(const r2d::HostMesh& m, const Refine2dOptions& o,
       bound = bound > 0 ? std::min(bound, 0.5 * region_area2[r - 1]) : 0.5 * region_area2[r - 1];
     if (bound > 0) area_bounded += at / bound;
   }
-  e.area = area;
-  double bounds = area_bounded;
-  if (o.max_edge_length > 0)
-    bounds = std::max(bounds, e.area / (0.433 * o.max_edge_length * o.max_edge_length));
-  e.least = std::max(static_cast<double>(m.triangles()), bounds);
-  e.typical = std::max(4.0 * m.points(), 2.0 * bounds);
-  return e;
+  return estimate_size(area, area_bounded, m.triangles(), m.points(), o);
+}
+
+// The same for a CDT assembled in the engine's space (it has no regions).
+SizeEstimate estimate_size(r2d::PreparedCdt& m, const Refine2dOptions& o) {
+  const double area = m.area();
+  return estimate_size(area, o.max_area > 0 ? area / o.max_area : 0.0, m.triangles(), m.points(), o);
 }
 
 // Smallest estimated output for which Auto takes the GPU. Measured on the H100 machine
@@ -236,112 +250,27 @@ long long steiner_cap(int cdt_points, const SizeEstimate& e, double capacity,
   return static_cast<long long>(std::max(0.0, std::min(wanted, capacity / 2 - cdt_points)));
 }
 
-// Thin parts (issue 9): where two segments (or convex-hull edges) that share no endpoint run
-// side by side at a width w, every triangle between them whose angles are all at least theta
-// has an area of at most w^2 / tan(theta), so a strip of length L needs at least about
-// L tan(theta) / w of them (a 1 x 1e-4 rectangle takes 0.31, 0.72 and 1.23 times L / w
-// triangles at 10, 20 and 33 degrees: 1.8-1.9 tan(theta) L / w). Small input angles do not
-// count: segments that meet at a vertex never make a pair, so what the small-angle rule leaves
-// bad is not asked for. Rays go from 8 points of each subsegment of the CDT along its inward
-// normal to the first subsegment they meet (at most 64 triangles away); where that one shares
-// no endpoint with the first, the stretch of the ray's eighth that both cover counts, at the
-// larger of the two widths at its ends (the width is linear along it). Each strip is seen
-// from both sides, each side counting a quarter of tan(theta) L / w: a lower bound about 4
-// times below what refinement makes, so that only what certainly cannot be meshed is refused.
-struct ThinEstimate {
-  double triangles = 0;  // at least this many triangles in thin parts
-  double width = 0;      // the thinnest part's width and its length, scaled units
-  double length = 0;
-};
-
-ThinEstimate estimate_thin_parts(const r2d::HostMesh& m, double tan_theta) {
-  ThinEstimate est;
+// Thin parts (thin_parts.h), on the host's copy of the CDT.
+r2d::ThinEstimate estimate_thin_parts(const r2d::HostMesh& m, double tan_theta) {
+  r2d::ThinEstimate est;
   if (!(tan_theta > 0)) return est;
-  constexpr int kSamples = 8, kMaxSteps = 64;
-  const auto P = [&](int v) { return &m.xy[2 * std::size_t(v)]; };
-  const auto incident = [&](int s, int u) {
-    const int a = m.seg[2 * s], b = m.seg[2 * s + 1], c = m.seg[2 * u], d = m.seg[2 * u + 1];
-    return s == u || a == c || a == d || b == c || b == d;
-  };
-  double thinnest_credit = 0, total = 0;
+  double best = 0, total = 0;
   const int ntri = m.triangles();
 #pragma omp parallel
   {
-  ThinEstimate mine;
-  double mine_credit = 0;
+    r2d::ThinAt mine;
 #pragma omp for schedule(dynamic, 256) nowait
-  for (int t = 0; t < ntri; ++t)
-    for (int e = 0; e < 3; ++e) {
-      const int s = m.ts[3 * t + e];
-      if (s < 0) continue;
-      const double* a = P(m.tv[3 * t + (e + 1) % 3]);
-      const double* b = P(m.tv[3 * t + (e + 2) % 3]);
-      const double ux = b[0] - a[0], uy = b[1] - a[1], len = std::sqrt(ux * ux + uy * uy);
-      if (!(len > 0)) continue;
-      const double nx = -uy / len, ny = ux / len;  // inward: the triangle is counter-clockwise
-      for (int i = 0; i < kSamples; ++i) {
-        const double f = (i + 0.5) / kSamples;
-        const double o[2] = {a[0] + f * ux, a[1] + f * uy};
-        int u = t, entry = e, hit = -1;
-        for (int step = 0; step < kMaxSteps && hit < 0; ++step) {
-          int exit = -1;
-          for (int j = 0; j < 3; ++j) {
-            if (j == entry) continue;
-            const double* p = P(m.tv[3 * u + (j + 1) % 3]);
-            const double* q = P(m.tv[3 * u + (j + 2) % 3]);
-            // Sides of p and q across the ray's line; the ray leaves through the edge whose
-            // endpoints lie on both sides of it.
-            const double sp = (p[0] - o[0]) * ny - (p[1] - o[1]) * nx;
-            const double sq = (q[0] - o[0]) * ny - (q[1] - o[1]) * nx;
-            if ((sp <= 0 && sq >= 0) || (sp >= 0 && sq <= 0)) {
-              exit = j;
-              break;
-            }
-          }
-          if (exit < 0) break;
-          if (m.ts[3 * u + exit] >= 0) {
-            hit = m.ts[3 * u + exit];
-            break;
-          }
-          const int nb = m.tn[3 * u + exit];
-          if (nb < 0) break;
-          u = nb / 3;
-          entry = nb % 3;
-        }
-        if (hit < 0 || incident(s, hit)) continue;
-        // The other segment's endpoints in the frame of ab: along it (in units of len) and
-        // their heights over it.
-        const double* c = P(m.seg[2 * hit]);
-        const double* d = P(m.seg[2 * hit + 1]);
-        const double tc = ((c[0] - a[0]) * ux + (c[1] - a[1]) * uy) / (len * len);
-        const double td = ((d[0] - a[0]) * ux + (d[1] - a[1]) * uy) / (len * len);
-        const double hc = (c[0] - a[0]) * nx + (c[1] - a[1]) * ny;
-        const double hd = (d[0] - a[0]) * nx + (d[1] - a[1]) * ny;
-        if (!(std::fabs(td - tc) > 0)) continue;  // perpendicular to ab: no strip
-        const double u0 = std::max(double(i) / kSamples, std::min(tc, td));
-        const double u1 = std::min(double(i + 1) / kSamples, std::max(tc, td));
-        if (!(u1 > u0)) continue;
-        const auto gap = [&](double v) { return hc + (hd - hc) * (v - tc) / (td - tc); };
-        const double w = std::max(gap(u0), gap(u1));
-        if (!(w > 0) || !std::isfinite(w)) continue;
-        const double credit = (u1 - u0) * len * tan_theta / (4.0 * w);
-        mine.triangles += credit;
-        if (credit > mine_credit) {
-          mine_credit = credit;
-          mine.width = w;
-          mine.length = (std::min(1.0, std::max(tc, td)) - std::max(0.0, std::min(tc, td))) * len;
-        }
-      }
+    for (int t = 0; t < ntri; ++t) {
+      const r2d::ThinAt r = r2d::thin_parts_at(t, m.tv.data(), m.tn.data(), m.ts.data(), m.seg.data(),
+                                               m.xy.data(), tan_theta);
+      mine.credit += r.credit;
+      if (r.best > mine.best) mine.best = r.best, mine.width = r.width, mine.length = r.length;
     }
 #pragma omp critical
-  {
-    total += mine.triangles;
-    if (mine_credit > thinnest_credit) {
-      thinnest_credit = mine_credit;
-      est.width = mine.width;
-      est.length = mine.length;
+    {
+      total += mine.credit;
+      if (mine.best > best) best = mine.best, est.width = mine.width, est.length = mine.length;
     }
-  }
   }
   est.triangles = total;
   return est;
@@ -613,11 +542,16 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
 #endif
     }
   } trim_device{cdt.gpu};
+  const r2d::Strategies strategies = strategies_from_environment();
   r2d::HostMesh mesh;
+  std::unique_ptr<r2d::PreparedCdt> prepared;  // the CDT left where it was made
   bool parallel = cdt.parallel;
   if (parallel) {
     try {
-      mesh = r2d::initial_cdt_parallel(pslg, options.remove_exterior, cdt.gpu, &st.cdt_phases);
+      r2d::InitialCdt c = r2d::initial_cdt_parallel(pslg, options.remove_exterior, cdt.gpu,
+                                                    strategies.cdt_assembly, &st.cdt_phases);
+      mesh = std::move(c.host);
+      prepared = std::move(c.prepared);
     } catch (const Error& e) {
       // Chosen automatically, the GPU's CDT gives way to CGAL's when the device is full.
       if (e.status() != Status::OutOfDeviceMemory || options.cdt != CdtMethod::Auto) throw;
@@ -631,7 +565,9 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
   if (cdt.gpu) mark_gpu_warm();
   st.cdt_seconds = since(t0);
   if (aborted()) throw Error(Status::Aborted, "aborted by the caller");
-  const int cdt_points = mesh.points();
+  const int cdt_points = prepared ? prepared->points() : mesh.points();
+  const int cdt_triangles = prepared ? prepared->triangles() : mesh.triangles();
+  const int input_segments = prepared ? static_cast<int>(pslg.segments.size()) : mesh.input_segments;
   step("CDT");
 
   r2d::Criteria crit = make_criteria(options);
@@ -639,7 +575,8 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
   std::vector<double> region_area2;  // twice each region's area bound, by region number - 1
   if (options.region_areas)
     for (const RegionSeed2& r : pslg.regions) region_area2.push_back(r.max_area > 0 ? 2 * r.max_area : 0.0);
-  const SizeEstimate estimate = estimate_size(mesh, options, region_area2);
+  const SizeEstimate estimate =
+      prepared ? estimate_size(*prepared, options) : estimate_size(mesh, options, region_area2);
   step("size estimate");
   if (options.deterministic && options.backend == Backend::Gpu)
     throw Error(Status::InvalidInput,
@@ -651,6 +588,10 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
                                           static_cast<std::size_t>(std::min(estimate.typical, 1e15)),
                                           gpu_min_triangles(options));
   const int engine_threads = options.deterministic ? 1 : cpu_threads();
+  if (prepared && (st.backend_used == Backend::Gpu) != cdt.gpu) {  // refined elsewhere
+    mesh = prepared->download();
+    prepared.reset();
+  }
   if (st.backend_used == Backend::Gpu) st.device_name = device_info().name;
   else st.device_name = "CPU (" + std::to_string(engine_threads) + " OpenMP threads)";
 
@@ -661,7 +602,7 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
   params.region_area2 = region_area2;
   if (options.refine) {
     const double capacity = triangle_capacity(st.backend_used);
-    refuse_what_cannot_fit(estimate, capacity, mesh.triangles(), st.backend_used, user_options,
+    refuse_what_cannot_fit(estimate, capacity, cdt_triangles, st.backend_used, user_options,
                            std::ldexp(estimate.area, -2 * scale.k));
     params.max_steiner = steiner_cap(cdt_points, estimate, capacity, options);
     st.steiner_cap = params.max_steiner;
@@ -670,11 +611,13 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
   // Thin parts that certainly need more points than the automatic cap allows are refused
   // before much time is spent on them (a 1 x 1e-11 rectangle at 25 degrees ran 15-40 s to
   // the cap of 1M); a cap of the caller's own meshes them up to that cap. The estimate reads
-  // only the CDT: before a CPU refinement it runs first; beside a GPU one it runs on the host
-  // meanwhile (0.1 s of set-up on a 1M-segment map), and a refusal stops the refinement.
+  // only the CDT: on a CDT assembled in the engine's space it runs there first; on the host's
+  // copy before a CPU refinement it runs first too, and beside a GPU one it runs on the host
+  // meanwhile (0.1 s of set-up on a 1M-segment map), where a refusal stops the refinement.
   const auto thin_refusal = [&]() -> std::string {
     const auto t_thin = Clock::now();
-    const ThinEstimate thin = estimate_thin_parts(mesh, std::tan(options.min_angle * kPi / 180.0));
+    const double tan_theta = std::tan(options.min_angle * kPi / 180.0);
+    const r2d::ThinEstimate thin = prepared ? prepared->thin_parts(tan_theta) : estimate_thin_parts(mesh, tan_theta);
     const double points = 0.5 * thin.triangles;  // about 2 triangles per point, or fewer
     if (std::getenv("GDR_TRACE"))
       std::fprintf(stderr, "gdr-trace thin parts: at least %.3g triangles (thinnest %.3g wide), %.3f s\n",
@@ -690,7 +633,7 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
   std::atomic<bool> thin_refused{false};
   std::future<std::string> thin_beside;
   if (options.refine && options.min_angle > 0 && st.automatic_steiner_cap) {
-    if (st.backend_used == Backend::Gpu)
+    if (st.backend_used == Backend::Gpu && !prepared)
       thin_beside = std::async(std::launch::async, [&] {
         std::string why = thin_refusal();
         if (!why.empty()) thin_refused = true;
@@ -706,7 +649,7 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
   };
 
   step("caps");
-  params.strategies = strategies_from_environment();
+  params.strategies = strategies;
   if (!options.refine) params.max_iterations = 0;
   Callbacks engine_cb = cb;
   engine_cb.abort = [&] { return thin_refused.load() || (cb.abort && cb.abort()); };
@@ -721,14 +664,16 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
   try {
     if (st.backend_used == Backend::Gpu) {
 #if defined(GDR_HAVE_CUDA)
-      er = r2d::refine_mesh_cuda(mesh, mesh_out, params, engine_cb);
+      er = prepared ? prepared->refine(mesh_out, params, engine_cb)
+                    : r2d::refine_mesh_cuda(mesh, mesh_out, params, engine_cb);
       mark_gpu_warm();
 #endif
     } else {
       const int threads = cpu_threads();
       omp_set_num_threads(engine_threads);
       try {
-        er = r2d::refine_mesh_cpu(mesh, mesh_out, params, engine_cb);
+        er = prepared ? prepared->refine(mesh_out, params, engine_cb)
+                      : r2d::refine_mesh_cpu(mesh, mesh_out, params, engine_cb);
       } catch (...) {
         omp_set_num_threads(threads);
         throw;
@@ -799,7 +744,7 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
   for (std::size_t k = 0; k < nsub; ++k) {
     const int s = mesh_out.subseg[4 * k + 2];
     out.subsegments[k] = {mesh_out.subseg[4 * k], mesh_out.subseg[4 * k + 1]};
-    out.subsegment_source[k] = s < mesh.input_segments ? pslg.segment_origin[s] : -1;
+    out.subsegment_source[k] = s < input_segments ? pslg.segment_origin[s] : -1;
   }
   step("output converted");
   note_removed_segments(input, pslg, out, options.remove_exterior, cb);

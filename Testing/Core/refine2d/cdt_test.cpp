@@ -173,6 +173,65 @@ TEST_P(ParallelCdt, SharedDataPslgs) {
   EXPECT_GE(n, 3);
 }
 
+// The parallel CDT is assembled where it ran (refine2d/cdt_assembly.h), or on the host
+// (GDR_DISABLE=cdt_assembly; always for hole and region seeds and for slivers at the hull):
+// the same triangles and subsegments, with the same sources, either way; and the thin-part
+// estimate made there refuses what the host's refuses, with the same numbers.
+TEST_P(ParallelCdt, AssembledWhereItRanAsOnTheHost) {
+  const auto both = [&](const Pslg& g, bool remove_exterior) {
+    unsetenv("GDR_DISABLE");
+    const gdr::TriMesh a = cdt(g, CdtMethod::Parallel, remove_exterior);
+    setenv("GDR_DISABLE", "cdt_assembly", 1);
+    const gdr::TriMesh b = cdt(g, CdtMethod::Parallel, remove_exterior);
+    unsetenv("GDR_DISABLE");
+    ASSERT_EQ(a.points.size(), b.points.size());
+    EXPECT_TRUE(canonical(a) == canonical(b)) << "the triangulations differ";
+    std::vector<std::array<int, 3>> sa, sb;  // (ends, source) of each subsegment
+    for (std::size_t k = 0; k < a.subsegments.size(); ++k)
+      sa.push_back({std::min(a.subsegments[k][0], a.subsegments[k][1]),
+                    std::max(a.subsegments[k][0], a.subsegments[k][1]), a.subsegment_source[k]});
+    for (std::size_t k = 0; k < b.subsegments.size(); ++k)
+      sb.push_back({std::min(b.subsegments[k][0], b.subsegments[k][1]),
+                    std::max(b.subsegments[k][0], b.subsegments[k][1]), b.subsegment_source[k]});
+    std::sort(sa.begin(), sa.end());
+    std::sort(sb.begin(), sb.end());
+    EXPECT_TRUE(sa == sb) << "the subsegments differ";
+  };
+  const int n = 40;
+  Pslg g = gdr_test::segments_in_cells(n, 3);
+  both(g, false);  // the convex hull: hull segments numbered in the space
+  add_loop(g, gdr_test::square(-0.5, -0.5, n + 0.5, n + 0.5));
+  both(g, true);   // the exterior removed
+  // Points within 1e-12 of a hull edge: slivers to peel, left to the host. (The square's
+  // sides are input and hull segments at once: the subsegments keep the input's numbers.)
+  Pslg h;
+  add_loop(h, gdr_test::square(0, 0, 10, 10));
+  for (int i = 1; i < 10; ++i) h.points.push_back({double(i), (i % 2 ? -1e-12 : 1e-12) + 0.0});
+  both(h, false);
+
+  // A thin domain: refused from the estimate made where the CDT is.
+  Pslg thin;
+  add_loop(thin, gdr_test::square(0, 0, 1, 1e-11));
+  for (int i = 0; i < 200; ++i) thin.points.push_back({0.3 + i * 1e-3, 0.5e-11});
+  gdr::Refine2dOptions o;
+  o.min_angle = 25;
+  o.cdt = CdtMethod::Parallel;
+  o.backend = GetParam();
+  std::string said[2];
+  for (int host = 0; host < 2; ++host) {
+    if (host) setenv("GDR_DISABLE", "cdt_assembly", 1);
+    try {
+      gdr::refine_2d(thin, o);
+      ADD_FAILURE() << "a 1 x 1e-11 rectangle at 25 degrees was meshed";
+    } catch (const gdr::Error& e) {
+      said[host] = e.what();
+    }
+    unsetenv("GDR_DISABLE");
+  }
+  EXPECT_NE(said[0].find("Steiner points in the input's thin parts"), std::string::npos) << said[0];
+  EXPECT_EQ(said[0], said[1]);
+}
+
 // Refinement from the parallel CDT: a valid quality mesh, as from CGAL's.
 TEST_P(ParallelCdt, RefinementFromIt) {
   Pslg g;
