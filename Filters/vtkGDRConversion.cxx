@@ -43,9 +43,9 @@
 namespace
 {
 // Cells of N corners each, as a vtkCellArray; corner k of a cell is cell[order[k]].
-template <std::size_t N>
+template <std::size_t N, class A>
 vtkSmartPointer<vtkCellArray> FixedSizeCells(
-  const std::vector<std::array<int, N>>& cells, const std::array<int, N>& order)
+  const std::vector<std::array<int, N>, A>& cells, const std::array<int, N>& order)
 {
   const vtkIdType n = static_cast<vtkIdType>(cells.size());
   vtkNew<vtkIdTypeArray> offsets;
@@ -67,8 +67,8 @@ vtkSmartPointer<vtkCellArray> FixedSizeCells(
 }
 
 // `values` as an array of `components` components added to `data` (cell or point data).
-template <typename ArrayT, typename ValueT>
-void AddArray(vtkDataSetAttributes* data, const char* name, const std::vector<ValueT>& values,
+template <typename ArrayT, typename ValueT, class A>
+void AddArray(vtkDataSetAttributes* data, const char* name, const std::vector<ValueT, A>& values,
   int components = 1)
 {
   vtkNew<ArrayT> array;
@@ -934,8 +934,8 @@ void vtkGDRConversion::ToSubfaces(
 // Meshing inputs and meshes read from files (the readers).
 namespace
 {
-template <typename PointT>
-vtkSmartPointer<vtkPoints> ToPoints(const std::vector<PointT>& in)
+template <typename PointT, class A>
+vtkSmartPointer<vtkPoints> ToPoints(const std::vector<PointT, A>& in)
 {
   vtkSmartPointer<vtkPoints> points = vtkSmartPointer<vtkPoints>::New();
   points->SetDataTypeToDouble();

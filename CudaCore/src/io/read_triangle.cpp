@@ -81,9 +81,10 @@ Pslg read_poly(const std::string& path) {
 TriMesh read_triangle_mesh(const std::string& node_path, const std::string& ele_path) {
   TriMesh mesh;
   const NodeList nodes = read_node_file(node_path, 2);
-  mesh.points = to_points2(nodes);
+  const std::vector<Point2> points = to_points2(nodes);
+  mesh.points.assign(points.begin(), points.end());
   mesh.first_index = nodes.first_index;
-  mesh.point_markers = nodes.markers;
+  mesh.point_markers.assign(nodes.markers.begin(), nodes.markers.end());
   mesh.point_attribute_count = nodes.attribute_count;
   mesh.point_attributes = nodes.attributes;
   TextFile file(ele_path);
@@ -115,7 +116,11 @@ TriMesh read_triangle_mesh(const std::string& node_path, const std::string& ele_
     Tokens header;
     poly.expect(header, 1, "the point count header");
     if (poly.integer(header[0], "point count") == 0) {
-      read_segments(poly, nodes, mesh.subsegments, mesh.subsegment_markers);
+      std::vector<std::array<int, 2>> segments;
+      std::vector<int> markers;
+      read_segments(poly, nodes, segments, markers);
+      mesh.subsegments.assign(segments.begin(), segments.end());
+      mesh.subsegment_markers.assign(markers.begin(), markers.end());
     }
   }
   return mesh;

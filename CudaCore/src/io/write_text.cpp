@@ -107,9 +107,9 @@ class OutputFiles {
 
 // Rows "index v0 v1 ... [marker]", elements and vertices numbered from `first`; the marker
 // (an int marker or a double attribute) -1 where `markers` is short.
-template <std::size_t N, class Marker = int>
-void append_elements(std::string& out, const std::vector<std::array<int, N>>& elements,
-                     const std::vector<Marker>* markers, int first = 0) {
+template <std::size_t N, class A, class Marker = int, class B = std::allocator<Marker>>
+void append_elements(std::string& out, const std::vector<std::array<int, N>, A>& elements,
+                     const std::vector<Marker, B>* markers, int first = 0) {
   append_rows(out, elements.size(), [&](std::string& text, std::size_t i) {
     append_number(text, static_cast<long long>(i) + first);
     for (int v : elements[i]) {

@@ -101,14 +101,15 @@ struct Piece {
   std::vector<std::int64_t> offsets;
   std::uint8_t cell_type = 0;
   int corners = 0;
-  const std::vector<PointType>* point_type = nullptr;
+  const PointType* point_type = nullptr;  // per point, point_types of them (0: none)
+  std::size_t point_types = 0;
   const std::vector<int>* region = nullptr;  // per cell, written as "Region" when not empty
 };
 
 // Cells with their corners taken in `order` (VTK's orientation may differ from ours).
 // Filled in parallel: a large mesh's file is mostly these arrays.
-template <std::size_t N>
-void fill_cells(Piece& piece, const std::vector<std::array<int, N>>& cells,
+template <std::size_t N, class A>
+void fill_cells(Piece& piece, const std::vector<std::array<int, N>, A>& cells,
                 const std::array<int, N>& order) {
   piece.corners = static_cast<int>(N);
   const long long n = static_cast<long long>(cells.size());
@@ -124,8 +125,8 @@ void fill_cells(Piece& piece, const std::vector<std::array<int, N>>& cells,
 }
 
 // Points as xyz (z = 0 in 2D).
-template <class P>
-void fill_points(Piece& piece, const std::vector<P>& points) {
+template <class P, class A>
+void fill_points(Piece& piece, const std::vector<P, A>& points) {
   const long long n = static_cast<long long>(points.size());
   piece.points.resize(3 * points.size());
   double* xyz = piece.points.data();
@@ -146,8 +147,8 @@ void write_vtk_xml(const std::string& path, const Piece& piece, const Attributes
     check_arrays(a->point_data, np, "point");
     check_arrays(a->cell_data, nc, "cell");
   }
-  if (piece.point_type && !piece.point_type->empty() && piece.point_type->size() != np)
-    throw Error(Status::InvalidInput, "point_type has " + std::to_string(piece.point_type->size()) +
+  if (piece.point_types && piece.point_types != np)
+    throw Error(Status::InvalidInput, "point_type has " + std::to_string(piece.point_types) +
                                           " entries for " + std::to_string(np) + " points");
   const bool region = piece.region && !piece.region->empty();
   if (region && piece.region->size() != nc)
@@ -165,8 +166,8 @@ void write_vtk_xml(const std::string& path, const Piece& piece, const Attributes
   f.xml += std::to_string(nc) + "\">\n      <PointData>\n";
   for (const DataArray& a : attributes.point_data) f.array(a);
   for (const DataArray& a : mesh_arrays.point_data) f.array(a);
-  if (piece.point_type && !piece.point_type->empty())
-    f.array("UInt8", "PointType", 1, reinterpret_cast<const std::uint8_t*>(piece.point_type->data()), np);
+  if (piece.point_types)
+    f.array("UInt8", "PointType", 1, reinterpret_cast<const std::uint8_t*>(piece.point_type), np);
   f.xml += "      </PointData>\n      <CellData>\n";
   for (const DataArray& a : attributes.cell_data) f.array(a);
   for (const DataArray& a : mesh_arrays.cell_data) f.array(a);
@@ -192,7 +193,8 @@ Piece tri_piece(const TriMesh& mesh) {
   fill_points(piece, mesh.points);
   fill_cells(piece, mesh.triangles, {0, 1, 2});
   piece.cell_type = kVtkTriangle;
-  piece.point_type = &mesh.point_type;
+  piece.point_type = mesh.point_type.data();
+  piece.point_types = mesh.point_type.size();
   return piece;
 }
 
@@ -284,7 +286,8 @@ void write_vtu(const std::string& path, const TetMesh& mesh, const Attributes& a
   // (orient3d > 0, gdr/validate.h): swap two corners, as write_tetgen does.
   fill_cells(piece, mesh.tets, {1, 0, 2, 3});
   piece.cell_type = kVtkTetra;
-  piece.point_type = &mesh.point_type;
+  piece.point_type = mesh.point_type.data();
+  piece.point_types = mesh.point_type.size();
   piece.region = &mesh.tet_region;
   write_vtk_xml(path, piece, attributes, false);
 }
@@ -294,7 +297,8 @@ void write_surface_vtp(const std::string& path, const TetMesh& mesh, const Attri
   fill_points(piece, mesh.points);
   fill_cells(piece, mesh.subfaces, {0, 1, 2});
   piece.cell_type = kVtkTriangle;
-  piece.point_type = &mesh.point_type;
+  piece.point_type = mesh.point_type.data();
+  piece.point_types = mesh.point_type.size();
   write_vtk_xml(path, piece, attributes, true);
 }
 

@@ -33,14 +33,20 @@ void carry_input_data(const Pslg& in, const CleanPslg& g, const double* xy, cons
     const int marker = s >= 0 && segment_marked ? in.segment_markers[s] : 0;
     out.subsegment_markers[k] = marker == 0 && subseg[4 * k + 3] ? 1 : marker;
   }
-  out.point_markers.assign(np, 0);
-  if (point_marked)
-    for (std::size_t v = 0; v < nclean; ++v)
-      if (g.point_origin[v] >= 0) out.point_markers[v] = in.point_markers[g.point_origin[v]];
+  out.point_markers.resize(np);
   // An unmarked point takes the marker of the first marked segment through it in input
   // order (hull edges last), as Triangle inserts its segments: the least (segment, subsegment)
   // key among the marked subsegments at each point.
-  std::vector<unsigned long long> first(np, ~0ull);
+  FilledVector<unsigned long long> first(np);
+  const long long npl = static_cast<long long>(np);
+#pragma omp parallel for
+  for (long long v = 0; v < npl; ++v) {
+    out.point_markers[v] = 0;
+    first[v] = ~0ull;
+  }
+  if (point_marked)
+    for (std::size_t v = 0; v < nclean; ++v)
+      if (g.point_origin[v] >= 0) out.point_markers[v] = in.point_markers[g.point_origin[v]];
   const long long nsub = static_cast<long long>(out.subsegments.size());
 #pragma omp parallel for
   for (long long k = 0; k < nsub; ++k) {
@@ -56,7 +62,6 @@ void carry_input_data(const Pslg& in, const CleanPslg& g, const double* xy, cons
       }
     }
   }
-  const long long npl = static_cast<long long>(np);
 #pragma omp parallel for
   for (long long v = 0; v < npl; ++v)
     if (out.point_markers[v] == 0 && first[v] != ~0ull)

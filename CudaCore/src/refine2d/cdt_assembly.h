@@ -333,6 +333,7 @@ ParallelCdtResult parallel_cdt_assembled(const std::vector<double>& xy, const st
   }
   cdt.recover_segments(segments);
   auto a = std::make_unique<AssembledCdt<Space>>();
+  cdt.release_scratch();
   if (assemble && assemble_in_space(cdt, input, *a)) {
     cdt.clock.template stop<Space>("assembly");
     r.prepared = std::make_unique<PreparedCdtIn<Space>>(std::move(a));

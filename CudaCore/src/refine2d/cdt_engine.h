@@ -233,6 +233,17 @@ struct ParallelCdt {
 
   Buf<int> seg, tseg, vt, miss, start, tri_count, slots, scratch;
 
+  // Everything but the triangulation (dm) and its segment marks (tseg), once done.
+  void release_scratch() {
+    for (Buf<int>* b : {&loc, &pending, &sel, &failed, &point_id, &count, &list, &anchor, &error, &done,
+                        &seg, &vt, &miss, &start, &tri_count, &slots, &scratch})
+      b->release();
+    for (Buf<int>* b : {&dm.tflag, &dm.mark, &dm.aux}) b->release();
+    cand_all.release();
+    cand.release();
+    tuples.release();
+  }
+
   // Step 3: every segment (2 per segment: point numbers) becomes an edge of the mesh.
   void recover_segments(const std::vector<int>& segments) {
     const int ns = static_cast<int>(segments.size() / 2);

@@ -34,8 +34,8 @@ struct CoordHash {
 
 // For every input point, the mesh vertex with exactly its coordinates (-1 if none). Input
 // duplicates share one representative; `representative[i]` is its index.
-template <class P>
-std::vector<int> locate_input_points(const std::vector<P>& input, const std::vector<P>& mesh,
+template <class P, class A, class B>
+std::vector<int> locate_input_points(const std::vector<P, A>& input, const std::vector<P, B>& mesh,
                                      std::vector<int>& representative) {
   std::unordered_map<CoordKey, int, CoordHash> index;
   index.reserve(input.size());
@@ -63,7 +63,8 @@ std::vector<int> locate_input_points(const std::vector<P>& input, const std::vec
 struct SubsegmentGraph {
   std::vector<std::size_t> start;
   std::vector<int> next;
-  SubsegmentGraph(std::size_t vertices, const std::vector<std::array<int, 2>>& subsegments)
+  template <class A>
+  SubsegmentGraph(std::size_t vertices, const std::vector<std::array<int, 2>, A>& subsegments)
       : start(vertices + 1, 0) {
     auto ok = [&](const std::array<int, 2>& s) {
       return s[0] >= 0 && s[1] >= 0 && static_cast<std::size_t>(s[0]) < vertices &&
@@ -132,8 +133,8 @@ double coordinate_slack(const std::vector<P>& points) {
 // on coordinates scaled by a power of two (exact) to about 1: at 1e95 and beyond the squares
 // overflowed to infinity, and every vertex passed (a 2D star at 1e156 failed --check only
 // when scaled down to 3e5).
-template <class P>
-bool follow_segment(const std::vector<P>& points, const SubsegmentGraph& graph, int a, int b,
+template <class P, class A>
+bool follow_segment(const std::vector<P, A>& points, const SubsegmentGraph& graph, int a, int b,
                     double tolerance, double slack = 0) {
   const auto qa = xyz(points[a]), qb = xyz(points[b]);
   double m = 0;

@@ -47,8 +47,8 @@ struct Accumulator {
   }
 };
 
-template <class Cell, class Measure>
-QualityStats run(std::size_t points, const std::vector<Cell>& cells, std::size_t bins,
+template <class Cell, class A, class Measure>
+QualityStats run(std::size_t points, const std::vector<Cell, A>& cells, std::size_t bins,
                  Measure measure, bool dihedral) {
   Accumulator total(bins);
   const std::int64_t n = static_cast<std::int64_t>(cells.size());

@@ -45,7 +45,7 @@ Cgal::Point_2 cgal(const Point2& p) { return {p.x, p.y}; }
 // neighbouring segment 1e-15 rad away cannot confuse it). Vertices must also lie on the
 // segment up to rounding: within `tolerance` of its length, or a few ulps of the largest
 // coordinate magnitude (intersection points are rounded and merged within 2^-40 of the extent).
-bool follow_sourced_chain(const std::vector<Point2>& P, const std::vector<std::array<int, 2>>& chain,
+bool follow_sourced_chain(const FilledVector<Point2>& P, const std::vector<std::array<int, 2>>& chain,
                           int a, int b, double tolerance, double extent) {
   const std::vector<int> path = validate::chain_path(chain, a, b);
   if (path.empty()) return false;

@@ -171,7 +171,7 @@ TEST_P(Refine2d, ConcentricPolygonsAndRefineAgainAddsNothing) {
   EXPECT_EQ(r.stats.bad_triangles, 0);
   // The output, read back as a PSLG (its subsegments as segments), is already good.
   Pslg again;
-  again.points = r.mesh.points;
+  again.points.assign(r.mesh.points.begin(), r.mesh.points.end());
   for (const auto& s : r.mesh.subsegments) again.segments.push_back({s[0], s[1]});
   auto r2 = mesh(again, o);
   EXPECT_EQ(r2.stats.steiner_points, 0);
