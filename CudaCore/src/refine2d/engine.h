@@ -715,8 +715,11 @@ struct Engine {
     dm.ptype.resize(dm.npts);
     dm.xy.to_host(out.xy);
     stamp("point copy");
-    dm.ptype.to_host(out.ptype);
-    dm.tv.to_host(out.tv);
+    out.ptype.resize(dm.npts);
+    static_assert(sizeof(PointType) == sizeof(std::uint8_t) && sizeof(out.tv[0]) == 3 * sizeof(int));
+    dm.ptype.download(reinterpret_cast<std::uint8_t*>(out.ptype.data()), dm.npts);
+    out.tv.resize(dm.ntri);
+    dm.tv.download(reinterpret_cast<int*>(out.tv.data()), 3 * std::size_t(dm.ntri));
     stamp("triangle copy");
     clock.template stop<Space>("download");
   }

@@ -14,6 +14,7 @@
 #include "exec/buffer.h"
 #include "exec/hd.h"
 #include "exec/host_vector.h"
+#include "gdr/pslg.h"
 
 namespace gdr::r2d {
 
@@ -52,9 +53,10 @@ struct HostMesh {
 // The engine's output: the final mesh (live triangles only) in the forms the facade reports,
 // built on the device so that no neighbour or segment links need to be copied.
 struct MeshResult {
+  // Triangles and point types in the output's own types (TriMesh takes them over).
   exec::HostVector<double> xy;           // 2 per point
-  exec::HostVector<std::uint8_t> ptype;  // per point
-  exec::HostVector<int> tv;              // 3 per triangle
+  FilledVector<PointType> ptype;         // per point
+  FilledVector<std::array<int, 3>> tv;   // per triangle
   exec::HostVector<int> subseg;          // 4 per subsegment: its two vertices, its segment,
                                          // and 1 on the mesh boundary (one triangle), else 0
   exec::HostVector<int> bad;             // triangles left bad: 2t, or 2t+1 where the
@@ -62,7 +64,7 @@ struct MeshResult {
   exec::HostVector<int> tregion;         // per triangle: region number (empty: no regions)
   double area = 0;                       // the mesh's area (in the engine's coordinates)
   double min_sin2 = 1;                   // the least sin^2 of an angle of its triangles
-  int triangles() const { return static_cast<int>(tv.size() / 3); }
+  int triangles() const { return static_cast<int>(tv.size()); }
   int points() const { return static_cast<int>(ptype.size()); }
 };
 

@@ -727,16 +727,11 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
   out.first_index = input.first_index;
   const int np = mesh_out.points(), nt = mesh_out.triangles();
   out.points.resize(np);
-  out.point_type.resize(np);
-  out.triangles.resize(nt);
 #pragma omp parallel for
-  for (int i = 0; i < np; ++i) {
+  for (int i = 0; i < np; ++i)
     out.points[i] = scale.apply(Point2{mesh_out.xy[2 * i], mesh_out.xy[2 * i + 1]}, -1);
-    out.point_type[i] = static_cast<PointType>(mesh_out.ptype[i]);
-  }
-#pragma omp parallel for
-  for (int t = 0; t < nt; ++t)
-    out.triangles[t] = {mesh_out.tv[3 * t], mesh_out.tv[3 * t + 1], mesh_out.tv[3 * t + 2]};
+  out.point_type = std::move(mesh_out.ptype);
+  out.triangles = std::move(mesh_out.tv);
   const std::size_t nsub = mesh_out.subseg.size() / 4;
   out.subsegments.resize(nsub);
   out.subsegment_source.resize(nsub);
