@@ -82,6 +82,18 @@ GDR_HD_INLINE int atomic_min(int* addr, int v) {
 #endif
 }
 
+GDR_HD_INLINE int atomic_max(int* addr, int v) {
+#if defined(__CUDA_ARCH__)
+  return atomicMax(addr, v);
+#else
+  int old = __atomic_load_n(addr, __ATOMIC_RELAXED);
+  while (old < v && !__atomic_compare_exchange_n(addr, &old, v, true, __ATOMIC_RELAXED,
+                                                 __ATOMIC_RELAXED)) {
+  }
+  return old;
+#endif
+}
+
 // Relaxed load that the compiler may not cache (values other threads change with atomics).
 template <class T>
 GDR_HD_INLINE T volatile_load(const T* addr) {

@@ -3,8 +3,9 @@
 // mesh built in the space's memory, so that a GPU run's CDT never goes to the host and back
 // (download, host assembly and upload took 0.12 s of a 0.52 s run at 1M segments on the
 // H200). The same steps as the host's assemble_cdt (cdt_parallel.cpp), which stays for what
-// this one leaves to it: hole and region seeds, and slivers at the hull to peel. Both give
-// the same mesh, triangle for triangle (cdt2d_test).
+// this one leaves to it, slivers at the hull to peel; hole and region seeds are located by
+// the same walk and flood the same components. Both give the same mesh, triangle for
+// triangle (cdt2d_test).
 #pragma once
 #include <cstring>
 #include <memory>
@@ -64,12 +65,14 @@ struct AssembledCdt {
   DeviceMesh<Space> dm;           // the engine's mesh
   exec::Buffer<Space, int> ts;    // per triangle edge: its segment or -1 (mesh2d.h)
   int input_segments = 0;
+  bool regions = false;           // region numbers in the flags (kRegionShift)
 };
 
 // Assembles `cdt` (its segments: `input` then hull segments) into `out`. False, with `cdt`
 // untouched, where a hull edge has a sliver to peel (the host does that).
 template <class Space>
-bool assemble_in_space(ParallelCdt<Space>& cdt, const std::vector<int>& input, AssembledCdt<Space>& out) {
+bool assemble_in_space(ParallelCdt<Space>& cdt, const std::vector<int>& input,
+                       const std::vector<Point2>& seeds, int holes, AssembledCdt<Space>& out) {
   using Ops = exec::Ops<Space>;
   using Buf = exec::Buffer<Space, int>;
   const int n = cdt.n, nt_all = cdt.dm.ntri, ninput = static_cast<int>(input.size() / 2);
@@ -99,11 +102,60 @@ bool assemble_in_space(ParallelCdt<Space>& cdt, const std::vector<int>& input, A
     if (tv[3 * t] >= n || tv[3 * t + 1] >= n || tv[3 * t + 2] >= n)
       out_flag[detail::find_root(par, static_cast<int>(t))] = 1;
   });
-  Buf gone(nt_all);  // per triangle: outside the domain
+  // Hole seeds empty their components; region seeds number theirs, a later seed winning (as
+  // Triangle does). Each is located by the host's walk (from triangle 0, walk_to), else by a
+  // scan of all triangles.
+  const int nseeds = static_cast<int>(seeds.size()), nregions = nseeds - holes;
+  Buf comp_region(nregions > 0 ? nt_all : 0);
+  int* creg = comp_region.data();
+  if (nseeds > 0) {
+    std::vector<double> sxy;
+    for (const Point2& p : seeds) sxy.insert(sxy.end(), {p.x, p.y});
+    exec::Buffer<Space, double> seed_xy;
+    seed_xy.upload(sxy);
+    Buf seed_tri(nseeds), walked(nseeds), missed(1);
+    missed.zero();
+    const double* sp = seed_xy.data();
+    int* st = seed_tri.data();
+    int* wk = walked.data();
+    int* ms = missed.data();
+    const MeshView mv = cdt.dm.view();
+    Ops::for_each(nseeds, [=] GDR_HD(long long k) {
+      const int t = nt_all > 0 ? walk_to(mv, 0, sp + 2 * k, 100000) : -1;
+      wk[k] = t >= 0;
+      st[k] = t >= 0 ? t : INT_MAX;
+      if (t < 0) *ms = 1;
+    });
+    if (missed.get(0))  // the first triangle that holds it
+      Ops::for_each(nt_all, [=] GDR_HD(long long t) {
+        for (int k = 0; k < nseeds; ++k) {
+          if (wk[k] || exec::volatile_load(&st[k]) <= t) continue;
+          bool inside = true;
+          for (int i = 0; i < 3 && inside; ++i)
+            inside = pred::orient2d(xy + 2 * tv[3 * t + (i + 1) % 3], xy + 2 * tv[3 * t + (i + 2) % 3], sp + 2 * k) >= 0;
+          if (inside) exec::atomic_min(&st[k], static_cast<int>(t));
+        }
+      });
+    if (nregions > 0) comp_region.zero();
+    Ops::for_each(nseeds, [=] GDR_HD(long long k) {
+      if (st[k] == INT_MAX) return;  // in no triangle
+      const int r = detail::find_root(par, st[k]);
+      if (k < holes) out_flag[r] = 1;
+      else exec::atomic_max(&creg[r], static_cast<int>(k - holes) + 1);
+    });
+  }
+  Buf gone(nt_all), region(creg ? nt_all : 0);  // per triangle: outside; its region number
   int* gn = gone.data();
-  Ops::for_each(nt_all, [=] GDR_HD(long long t) { gn[t] = out_flag[detail::find_root(par, static_cast<int>(t))]; });
+  int* rgw = region.data();
+  Ops::for_each(nt_all, [=] GDR_HD(long long t) {
+    const int r = detail::find_root(par, static_cast<int>(t));
+    gn[t] = out_flag[r];
+    if (rgw) rgw[t] = creg[r];
+  });
   parent.release();
   outside.release();
+  comp_region.release();
+  const int* rg = region.data();
   const auto is_out = [=] GDR_HD(int t) { return gn[t] != 0; };
   // Slivers at the hull (peel_hull_slivers' test): left to the host.
   Buf sliver(1);
@@ -182,12 +234,20 @@ bool assemble_in_space(ParallelCdt<Space>& cdt, const std::vector<int>& input, A
   dm.pseg = std::move(cdt.dm.pseg);
   dm.tflag.resize_discard(nt);
   int* f = dm.tflag.data();
+  Buf kept_region(rg ? nt : 0);
+  int* kr = kept_region.data();
+  if (rg)
+    Ops::for_each(nt_all, [=] GDR_HD(long long t) {
+      if (!is_out(static_cast<int>(t))) kr[ids[t]] = rg[t];
+    });
   Ops::for_each(nt, [=] GDR_HD(long long t) {
     int bits = kFresh;
     for (int i = 0; i < 3; ++i)
       if (ts2[3 * t + i] >= 0) bits |= kSubseg0 << i;
+    if (kr) bits |= kr[t] << kRegionShift;
     f[t] = bits;
   });
+  out.regions = rg != nullptr;
   dm.mark.resize_discard(nt);
   dm.mark.zero();
   dm.aux.resize_discard(nt);
@@ -229,20 +289,33 @@ class PreparedCdtIn final : public PreparedCdt {
   int points() const override { return a_->dm.npts; }
   int triangles() const override { return a_->dm.ntri; }
 
-  double area() override {
+  Areas areas(double max_area, const std::vector<double>& region_area2) override {
     using Ops = exec::Ops<Space>;
     const int nt = a_->dm.ntri;
-    exec::Buffer<Space, double> at(nt);
+    exec::Buffer<Space, double> at(nt), bounded(nt), bounds;
+    bounds.upload(region_area2);
     double* ar = at.data();
+    double* bd = bounded.data();
+    const double* rb = bounds.data();
+    const int nb = static_cast<int>(region_area2.size());
     const int* tv = a_->dm.tv.data();
+    const int* fl = a_->dm.tflag.data();
     const double* xy = a_->dm.xy.data();
     Ops::for_each(nt, [=] GDR_HD(long long t) {
       const double* a = xy + 2 * tv[3 * t];
       const double* b = xy + 2 * tv[3 * t + 1];
       const double* c = xy + 2 * tv[3 * t + 2];
       ar[t] = 0.5 * fabs((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]));
+      // The triangles the area bounds ask for (estimate_size's rule, region by region).
+      double bound = max_area;
+      const int r = fl[t] >> kRegionShift;
+      if (r > 0 && r <= nb && rb[r - 1] > 0) bound = bound > 0 ? fmin(bound, 0.5 * rb[r - 1]) : 0.5 * rb[r - 1];
+      bd[t] = bound > 0 ? ar[t] / bound : 0.0;
     });
-    return Ops::exclusive_scan(ar, ar, nt);
+    Areas s;
+    s.area = Ops::exclusive_scan(ar, ar, nt);
+    s.bounded = Ops::exclusive_scan(bd, bd, nt);
+    return s;
   }
 
   ThinEstimate thin_parts(double tan_theta) override {
@@ -301,6 +374,13 @@ class PreparedCdtIn final : public PreparedCdt {
     dm.tn.to_host(m.tn);
     a_->ts.to_host(m.ts);
     dm.seg.to_host(m.seg);
+    if (a_->regions) {
+      exec::Buffer<Space, int> region(dm.ntri);
+      int* rg = region.data();
+      const int* fl = dm.tflag.data();
+      exec::Ops<Space>::for_each(dm.ntri, [=] GDR_HD(long long t) { rg[t] = fl[t] >> kRegionShift; });
+      region.to_host(m.tregion);
+    }
     m.input_segments = a_->input_segments;
     return m;
   }
@@ -311,7 +391,7 @@ class PreparedCdtIn final : public PreparedCdt {
     } trim;
     a_->ts.release();
     auto a = std::move(a_);
-    return refine_mesh<Space>(std::move(a->dm), false, out, params, cb);
+    return refine_mesh<Space>(std::move(a->dm), a->regions, out, params, cb);
   }
 
  private:
@@ -321,7 +401,8 @@ class PreparedCdtIn final : public PreparedCdt {
 // The whole parallel CDT (cdt_engine.h) and, with `assemble`, its assembly in the space.
 template <class Space>
 ParallelCdtResult parallel_cdt_assembled(const std::vector<double>& xy, const std::vector<int>& input,
-                                         bool hull, bool assemble) {
+                                         bool hull, bool assemble, const std::vector<Point2>& seeds,
+                                         int holes) {
   ParallelCdtResult r;
   ParallelCdt<Space> cdt;
   cdt.triangulate_points(xy);
@@ -334,7 +415,7 @@ ParallelCdtResult parallel_cdt_assembled(const std::vector<double>& xy, const st
   cdt.recover_segments(segments);
   auto a = std::make_unique<AssembledCdt<Space>>();
   cdt.release_scratch();
-  if (assemble && assemble_in_space(cdt, input, *a)) {
+  if (assemble && assemble_in_space(cdt, input, seeds, holes, *a)) {
     cdt.clock.template stop<Space>("assembly");
     r.prepared = std::make_unique<PreparedCdtIn<Space>>(std::move(a));
   } else {

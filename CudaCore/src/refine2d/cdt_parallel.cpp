@@ -266,18 +266,19 @@ InitialCdt initial_cdt_parallel(const CleanPslg& g, bool remove_exterior, bool g
   const long long ns = static_cast<long long>(g.segments.size());
 #pragma omp parallel for
   for (long long s = 0; s < ns; ++s) segments[2 * s] = g.segments[s][0], segments[2 * s + 1] = g.segments[s][1];
-  // Seeds are located on the host's copy.
-  const bool assemble = in_space && g.holes.empty() && g.regions.empty();
+  std::vector<Point2> seeds = g.holes;
+  for (const auto& rs : g.regions) seeds.push_back(rs.point);
+  const int holes = static_cast<int>(g.holes.size());
   ParallelCdtResult r;
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
 #if defined(GDR_HAVE_CUDA)
-  if (gpu) r = parallel_cdt_cuda(xy, segments, !remove_exterior, assemble);
+  if (gpu) r = parallel_cdt_cuda(xy, segments, !remove_exterior, in_space, seeds, holes);
   else
 #endif
   {
     (void)gpu;
-    r = parallel_cdt_cpu(xy, segments, !remove_exterior, assemble);
+    r = parallel_cdt_cpu(xy, segments, !remove_exterior, in_space, seeds, holes);
   }
   // Beside the device phases: the whole device call (set-up, transfers and memory handed
   // back included) and the domain's assembly on the host.

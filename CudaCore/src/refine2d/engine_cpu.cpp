@@ -18,11 +18,11 @@ bool input_is_clean_cpu(const std::vector<Point2>& points, const std::vector<std
 }
 
 ParallelCdtResult parallel_cdt_cpu(const std::vector<double>& xy, const std::vector<int>& segments,
-                                   bool hull, bool assemble) {
+                                   bool hull, bool assemble, const std::vector<Point2>& seeds, int holes) {
   struct Trim {
     ~Trim() { exec::Ops<exec::Cpu>::trim(); }
   } trim;
-  return parallel_cdt_assembled<exec::Cpu>(xy, segments, hull, assemble);
+  return parallel_cdt_assembled<exec::Cpu>(xy, segments, hull, assemble, seeds, holes);
 }
 
 }  // namespace gdr::r2d

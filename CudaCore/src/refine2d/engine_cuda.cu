@@ -16,9 +16,9 @@ EngineResult refine_mesh_cuda(const HostMesh& mesh, MeshResult& out, const Engin
 // The pool keeps the CDT's memory for the refinement that follows (refine_2d hands it back
 // when the run ends, trim_device_memory_cuda); after an error it is handed back at once.
 ParallelCdtResult parallel_cdt_cuda(const std::vector<double>& xy, const std::vector<int>& segments,
-                                    bool hull, bool assemble) {
+                                    bool hull, bool assemble, const std::vector<Point2>& seeds, int holes) {
   try {
-    return parallel_cdt_assembled<exec::Cuda>(xy, segments, hull, assemble);
+    return parallel_cdt_assembled<exec::Cuda>(xy, segments, hull, assemble, seeds, holes);
   } catch (...) {
     exec::Ops<exec::Cuda>::trim();
     throw;

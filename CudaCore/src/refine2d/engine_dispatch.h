@@ -24,7 +24,12 @@ class PreparedCdt {
   virtual ~PreparedCdt() = default;
   virtual int points() const = 0;
   virtual int triangles() const = 0;
-  virtual double area() = 0;                              // the domain's, scaled units
+  struct Areas {
+    double area = 0;     // the domain's, scaled units
+    double bounded = 0;  // the triangles the area bounds ask for (estimate_size)
+  };
+  // `region_area2`: twice each region's area bound by region number - 1 (EngineParams).
+  virtual Areas areas(double max_area, const std::vector<double>& region_area2) = 0;
   virtual ThinEstimate thin_parts(double tan_theta) = 0;  // thin_parts.h
   virtual HostMesh download() = 0;
   // Refines in the space (once: the mesh moves into the engine).
@@ -33,18 +38,19 @@ class PreparedCdt {
 
 // The parallel CDT (cdt_engine.h) of xy (the points, then the bounding triangle's three
 // corners) and the input segments (2 per segment), with the convex hull's edges when
-// `hull`: assembled in the space when `assemble` and it can be (`prepared`), else as
-// `raw` triangles for the host's assemble_cdt.
+// `hull`: assembled in the space when `assemble` and it can be (`prepared`; `seeds`: the
+// first `holes` are hole seeds, the rest region seeds), else as `raw` triangles for the
+// host's assemble_cdt.
 struct ParallelCdtResult {
   std::unique_ptr<PreparedCdt> prepared;
   RawCdt raw;
   std::vector<PhaseTime> phases;
 };
 ParallelCdtResult parallel_cdt_cpu(const std::vector<double>& xy, const std::vector<int>& segments,
-                                   bool hull, bool assemble);
+                                   bool hull, bool assemble, const std::vector<Point2>& seeds, int holes);
 #if defined(GDR_HAVE_CUDA)
 ParallelCdtResult parallel_cdt_cuda(const std::vector<double>& xy, const std::vector<int>& segments,
-                                    bool hull, bool assemble);
+                                    bool hull, bool assemble, const std::vector<Point2>& seeds, int holes);
 #endif
 
 }  // namespace gdr::r2d

@@ -71,7 +71,7 @@ constexpr double kHullSliver = 1e-9;
 
 // The same CDT as initial_cdt, built in parallel (cdt_engine.h) on the GPU or CPU threads;
 // with `in_space`, assembled where it was built (`prepared`, engine_dispatch.h) unless
-// hole or region seeds or slivers at the hull need the host's assembly (`host`). Its
+// slivers at the hull need the host's assembly (`host`). Its
 // phases' times go to `phases` when given.
 class PreparedCdt;
 struct InitialCdt {

@@ -125,10 +125,11 @@ SizeEstimate estimate_size(const r2d::HostMesh& m, const Refine2dOptions& o,
   return estimate_size(area, area_bounded, m.triangles(), m.points(), o);
 }
 
-// The same for a CDT assembled in the engine's space (it has no regions).
-SizeEstimate estimate_size(r2d::PreparedCdt& m, const Refine2dOptions& o) {
-  const double area = m.area();
-  return estimate_size(area, o.max_area > 0 ? area / o.max_area : 0.0, m.triangles(), m.points(), o);
+// The same for a CDT assembled in the engine's space.
+SizeEstimate estimate_size(r2d::PreparedCdt& m, const Refine2dOptions& o,
+                           const std::vector<double>& region_area2) {
+  const r2d::PreparedCdt::Areas a = m.areas(o.max_area, region_area2);
+  return estimate_size(a.area, a.bounded, m.triangles(), m.points(), o);
 }
 
 // Smallest estimated output for which Auto takes the GPU. Measured on the H100 machine
@@ -576,7 +577,7 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
   if (options.region_areas)
     for (const RegionSeed2& r : pslg.regions) region_area2.push_back(r.max_area > 0 ? 2 * r.max_area : 0.0);
   const SizeEstimate estimate =
-      prepared ? estimate_size(*prepared, options) : estimate_size(mesh, options, region_area2);
+      prepared ? estimate_size(*prepared, options, region_area2) : estimate_size(mesh, options, region_area2);
   step("size estimate");
   if (options.deterministic && options.backend == Backend::Gpu)
     throw Error(Status::InvalidInput,

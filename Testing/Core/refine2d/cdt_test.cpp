@@ -196,12 +196,36 @@ TEST_P(ParallelCdt, AssembledWhereItRanAsOnTheHost) {
     std::sort(sa.begin(), sa.end());
     std::sort(sb.begin(), sb.end());
     EXPECT_TRUE(sa == sb) << "the subsegments differ";
+    ASSERT_EQ(a.triangle_region.size(), b.triangle_region.size());
+    const auto regions = [](const gdr::TriMesh& m) {  // (corners, region) of each triangle
+      std::vector<std::pair<std::array<int, 3>, double>> r;
+      for (std::size_t t = 0; t < m.triangle_region.size(); ++t) {
+        std::array<int, 3> c = m.triangles[t];
+        std::rotate(c.begin(), std::min_element(c.begin(), c.end()), c.end());
+        r.push_back({c, m.triangle_region[t]});
+      }
+      std::sort(r.begin(), r.end());
+      return r;
+    };
+    EXPECT_TRUE(regions(a) == regions(b)) << "the regions differ";
   };
   const int n = 40;
   Pslg g = gdr_test::segments_in_cells(n, 3);
   both(g, false);  // the convex hull: hull segments numbered in the space
   add_loop(g, gdr_test::square(-0.5, -0.5, n + 0.5, n + 0.5));
   both(g, true);   // the exterior removed
+  // Holes and regions: a hole inside a region, two seeds in one region (the later wins), a
+  // seed in a hole and one outside (they mark nothing), seeds on a vertex and on a segment.
+  Pslg r = gdr_test::segments_in_cells(20, 5);
+  add_loop(r, gdr_test::square(-0.5, -0.5, 20.5, 20.5));
+  add_loop(r, gdr_test::square(2.2, 2.2, 7.8, 7.8));
+  add_loop(r, gdr_test::square(3.1, 3.1, 3.9, 3.9));
+  r.holes.push_back({3.5, 3.5});
+  for (const Point2 p : {Point2{2.5, 2.5}, Point2{7.5, 7.5}, Point2{3.5, 3.45}, Point2{40, 40},
+                         Point2{15.3, 12.6}, r.points[0], Point2{-0.5, 5}})
+    r.regions.push_back({p, static_cast<double>(r.regions.size() + 1), 0});
+  both(r, true);
+  both(r, false);
   // Points within 1e-12 of a hull edge: slivers to peel, left to the host. (The square's
   // sides are input and hull segments at once: the subsegments keep the input's numbers.)
   Pslg h;
