@@ -263,6 +263,30 @@ struct ParallelCdt {
         throw Error(Status::InternalError, "parallel CDT: segment recovery made no progress");
       recovery_round(nm);
     }
+    check_links();
+  }
+
+  // Every link must be mutual, between the same two vertices, with the same segment mark on
+  // both sides. A spike in a chain (InsertSegment) used to leave links to reused slots,
+  // after which the exterior flooded through them (fuzz2d seed 51; long segments through a
+  // cloud): should any such defect remain, the CDT is refused and refine_2d builds CGAL's,
+  // with a warning.
+  void check_links() {
+    const MeshView mv = dm.view();
+    const int* ts = tseg.size() >= 3 * std::size_t(dm.ntri) ? tseg.data() : nullptr;
+    int* err = error.data();
+    error.zero();
+    Ops::for_each(3 * std::size_t(dm.ntri), [=] GDR_HD(long long e) {
+      const int nb = mv.tn[e];
+      if (nb < 0) return;
+      const long long t = e / 3, u = nb / 3;
+      const int i = static_cast<int>(e % 3), j = nb % 3;
+      if (mv.tn[nb] != e || (ts && ts[nb] != ts[e]) || mv.tv[3 * t + next3(i)] != mv.tv[3 * u + prev3(j)] ||
+          mv.tv[3 * t + prev3(i)] != mv.tv[3 * u + next3(j)])
+        *err = 1;
+    });
+    if (error.get(0))
+      throw Error(Status::InternalError, "parallel CDT: inconsistent triangle links after segment recovery");
   }
 
   // Per listed segment: done (its edge is there: marked now) or its start code.
@@ -432,12 +456,23 @@ struct ParallelCdt {
           R[++nr] = m.tv[3 * t + prev3(re)];
         }
       });
+      // A vertex beside the segment whose whole star is crossed (a point 1e-12 off it) puts
+      // a spike u, v, u into its side's chain: the chain edges (u, v) and (v, u) then face
+      // each other across crossed triangles, not outer ones. They are marked (-2) and linked
+      // to each other once their new triangles exist.
+      for (int side = 0; side < 2; ++side) {
+        int* out = side == 0 ? Lo : Ro;
+        const int last = side == 0 ? nl : nr;
+        for (int j = 0; j < last; ++j)
+          for (int q = 0; q < k && out[2 * j] >= 0; ++q)
+            if (out[2 * j] / 3 == slot[q]) out[2 * j] = -2;
+      }
       // nl + nr == k + 2 (both chains end at b); each side has nl - 1 and nr - 1 triangles.
       int used = 0;
       int root[2];
       for (int side = 0; side < 2; ++side) {
         const int* V = side == 0 ? L : R;
-        const int* out = side == 0 ? Lo : Ro;
+        int* out = side == 0 ? Lo : Ro;
         const int last = side == 0 ? nl : nr;
         stack[0] = 0, stack[1] = last, stack[2] = -1;
         int depth = 1;
@@ -476,8 +511,13 @@ struct ParallelCdt {
             const int i0 = iv[0], i1 = iv[1], ed = iv[2];
             if (i1 == i0 + 1) {  // a chain edge: link outwards
               const int ol = out[2 * i0];
-              m.tn[3 * t + ed] = ol;
-              if (ol >= 0) m.tn[ol] = 3 * t + ed;
+              if (ol == -2) {  // a spike's: linked below, meanwhile its new edge is kept
+                m.tn[3 * t + ed] = -1;
+                out[2 * i0] = -3 - (3 * t + ed);
+              } else {
+                m.tn[3 * t + ed] = ol;
+                if (ol >= 0) m.tn[ol] = 3 * t + ed;
+              }
               tseg[3 * t + ed] = out[2 * i0 + 1];
             } else {  // an inner edge: the triangle beyond links back when it is made
               tseg[3 * t + ed] = -1;
@@ -495,6 +535,26 @@ struct ParallelCdt {
       }
       m.tn[root[0]] = root[1];
       m.tn[root[1]] = root[0];
+      // The spikes' chain edges, (u, v) with (v, u) of the same side.
+      for (int side = 0; side < 2; ++side) {
+        const int* V = side == 0 ? L : R;
+        int* out = side == 0 ? Lo : Ro;
+        const int last = side == 0 ? nl : nr;
+        for (int j = 0; j < last; ++j) {
+          if (out[2 * j] > -3) continue;
+          int partner = -1;
+          for (int j2 = 0; j2 < last && partner < 0; ++j2)
+            if (j2 != j && out[2 * j2] <= -3 && V[j2] == V[j + 1] && V[j2 + 1] == V[j]) partner = j2;
+          if (partner < 0) {
+            *error = 1;
+            return;
+          }
+          const int e1 = -3 - out[2 * j], e2 = -3 - out[2 * partner];
+          m.tn[e1] = e2;
+          m.tn[e2] = e1;
+          out[2 * j] = out[2 * partner] = -1;
+        }
+      }
     }
   };
 

@@ -554,10 +554,15 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
       mesh = std::move(c.host);
       prepared = std::move(c.prepared);
     } catch (const Error& e) {
-      // Chosen automatically, the GPU's CDT gives way to CGAL's when the device is full.
-      if (e.status() != Status::OutOfDeviceMemory || options.cdt != CdtMethod::Auto) throw;
-      if (cb.warning) cb.warning(std::string("the GPU's CDT ran out of memory; CGAL's on the CPU instead: ") + e.what());
+      // Chosen automatically, the GPU's CDT gives way to CGAL's when the device is full; and
+      // whichever way chosen, where its own checks find it inconsistent.
+      const bool full = e.status() == Status::OutOfDeviceMemory && options.cdt == CdtMethod::Auto;
+      if (!full && e.status() != Status::InternalError) throw;
+      if (cb.warning)
+        cb.warning(std::string(full ? "the GPU's CDT ran out of memory" : "the parallel CDT failed its checks") +
+                   "; CGAL's on the CPU instead: " + e.what());
       parallel = false;
+      prepared.reset();
       st.cdt_phases.clear();
     }
   }
