@@ -9,6 +9,7 @@ namespace gdr {
 class TraceSteps {
  public:
   explicit TraceSteps(const char* stage) : stage_(stage), on_(std::getenv("GDR_TRACE") != nullptr) {}
+  bool on() const { return on_; }
   // The time since the previous step (or the start).
   void operator()(const char* step) {
     if (!on_) return;

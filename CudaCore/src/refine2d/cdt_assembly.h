@@ -81,7 +81,8 @@ bool assemble_in_space(ParallelCdt<Space>& cdt, const std::vector<int>& input,
   const int* tseg = cdt.tseg.data();
   const double* xy = cdt.dm.xy.data();
   TraceSteps trace("CDT assembly in the space");
-  const auto step = [&](const char* what) {
+  const auto step = [&](const char* what) {  // waits for the device only when tracing
+    if (!trace.on()) return;
     Ops::synchronize();
     trace(what);
   };
