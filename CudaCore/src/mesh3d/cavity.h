@@ -320,8 +320,12 @@ struct SetInCavity {
     if (value && !failed[h.pt]) *flag |= bit;
     // Only the owner of the mark may clear: a failed point's tuple can name an element that
     // a winner took over. A subface also loses its fan edges (MarkSubfaceFans).
-    if (!value && failed[h.pt] && *mark == h.pt + 1)
+    if (!value && failed[h.pt] && *mark == h.pt + 1) {
       *flag &= is_sub_tuple(h) ? ~(bit | (7 * kSubFanEdge0)) : ~bit;
+      if (!is_sub_tuple(h))  // its boundary subfaces flip no more (MarkFlips)
+        for (int f = 0; f < 4; ++f)
+          if (m.tsub[4 * h.elem + f] >= 0) exec::atomic_and(&m.sflag[m.tsub[4 * h.elem + f]], ~int(kSubFlipBits));
+    }
   }
 };
 
@@ -411,6 +415,174 @@ GDR_HD_INLINE bool fan_neighbour(const TetView& m, int j, int t, int f, int x, i
   return false;
 }
 
+// ---------------------------------------------------------------------------------------
+// Subface flips. On a facet planar only up to rounding (a part turned to an angle, a facet
+// merged across near-flat edges, Steiner points rounded off their facet), four corners of two
+// neighbouring boundary subfaces are nearly cocircular, and the diagonal between them can be
+// the wrong one for a new point p: p's two new tetrahedra on the subfaces would meet across a
+// face that is not locally Delaunay, for any point p there, and refinement stalls. The
+// Delaunay tetrahedralization of those five points then has the other diagonal: the two
+// subfaces (x, y, o), (y, x, w) become (o, w, x-or-y) and the two new tetrahedra (x, o, w, p)
+// and (y, o, w, p), the flat tetrahedron (x, y, o, w) leaving the domain. The boundary moves
+// by that flat tetrahedron, a rounding; every decision stays exact. The subface with the
+// lower index (lo) keeps the smaller of x, y, the other keeps the larger.
+
+// Decoded kSubFlip bits of subface s (sv not yet rewritten).
+struct SubfaceFlip {
+  int e = -1;          // the edge opposite corner e flips; -1: no flip
+  bool valid = true;   // false: marked for two edges at once
+  bool lo = false;
+  int own = -1, other = -1, vmin = -1, vmax = -1;  // its corner off the edge, the neighbour's, the edge
+  GDR_HD_INLINE int replaced() const { return lo ? vmax : vmin; }
+  GDR_HD_INLINE bool on() const { return e >= 0; }
+};
+
+GDR_HD_INLINE SubfaceFlip subface_flip(const TetView& m, int s) {
+  SubfaceFlip r;
+  if (s < 0 || !(m.sflag[s] & kSubFlip)) return r;
+  const int bits = (m.sflag[s] / kSubFlipEdge0) & 7;
+  r.e = bits == 1 ? 0 : (bits == 2 ? 1 : 2);
+  r.valid = bits == 1 || bits == 2 || bits == 4;
+  r.lo = (m.sflag[s] & kSubFlipLo) != 0;
+  r.own = m.sv[3 * s + r.e];
+  const int x = m.sv[3 * s + (r.e + 1) % 3], y = m.sv[3 * s + (r.e + 2) % 3];
+  r.vmin = x < y ? x : y;
+  r.vmax = x < y ? y : x;
+  r.other = m.saux[s];
+  return r;
+}
+
+GDR_HD_INLINE bool one_sided(const TetView& m, int s) { return (m.st[2 * s] < 0) != (m.st[2 * s + 1] < 0); }
+
+// The corners (besides p) of the new tetrahedron on fan face f of cavity tetrahedron t, in
+// its slot's order: the face's corners, one of them replaced when the subface there flips.
+GDR_HD_INLINE void fan_corners(const TetView& m, int t, int f, int* v) {
+  for (int k = 0; k < 3; ++k) v[k] = m.tv[4 * t + face_corner(f, k)];
+  const SubfaceFlip fl = subface_flip(m, m.tsub[4 * t + f]);
+  if (fl.on() && fl.valid)
+    for (int k = 0; k < 3; ++k)
+      if (v[k] == fl.replaced()) v[k] = fl.other;
+}
+
+GDR_HD_INLINE bool holds(const int* v, int a) { return v[0] == a || v[1] == a || v[2] == a; }
+
+// The fan face, (u, g) or its flip partner, whose new tetrahedron holds the face (a, b, p).
+GDR_HD_INLINE bool fan_holder(const TetView& m, int j, int& u, int& g, int a, int b) {
+  int v[3];
+  fan_corners(m, u, g, v);
+  if (holds(v, a) && holds(v, b)) return true;
+  const SubfaceFlip fl = subface_flip(m, m.tsub[4 * u + g]);
+  FanNeighbour r;
+  if (!fl.on() || !fl.valid || !fan_neighbour(m, j, u, g, fl.vmin, fl.vmax, r) || r.split >= 0) return false;
+  u = r.u;
+  g = r.g;
+  fan_corners(m, u, g, v);
+  return holds(v, a) && holds(v, b);
+}
+
+// Across the face (a, b, p) of the new tetrahedron on fan face (t, f): as fan_neighbour, the
+// fan face holding the other new tetrahedron there (flips included), or the boundary.
+GDR_HD_INLINE bool fan_across(const TetView& m, int j, int t, int f, int a, int b, FanNeighbour& r) {
+  const SubfaceFlip fl = subface_flip(m, m.tsub[4 * t + f]);
+  int u = t, g = f;
+  if (fl.on() && fl.valid) {
+    FanNeighbour partner;
+    if (!fan_neighbour(m, j, t, f, fl.vmin, fl.vmax, partner) || partner.split >= 0) {
+      r.broken = true;
+      return false;
+    }
+    if ((a == fl.own && b == fl.other) || (a == fl.other && b == fl.own)) {
+      r = partner;  // the face between the two flipped tetrahedra
+      return true;
+    }
+    if (a == fl.other || b == fl.other) {  // a face the partner's tetrahedron had
+      u = partner.u;
+      g = partner.g;
+    }
+  }
+  const bool inside = fan_neighbour(m, j, u, g, a, b, r);
+  if (inside && !fan_holder(m, j, r.u, r.g, a, b)) {
+    r.broken = true;
+    return false;
+  }
+  return inside;
+}
+
+// The corner of the new tetrahedron on fan face (u, g) that is neither a nor b.
+GDR_HD_INLINE int fan_apex(const TetView& m, int u, int g, int a, int b) {
+  int v[3];
+  fan_corners(m, u, g, v);
+  for (int k = 0; k < 3; ++k)
+    if (v[k] != a && v[k] != b) return v[k];
+  return -1;
+}
+
+// Before CheckCavity: each boundary fan subface whose two new tetrahedra with its neighbour
+// across a non-subsegment edge would not be locally Delaunay marks that edge to flip, when
+// both flipped tetrahedra are positive and not flat. Both subfaces decide alike (the test
+// is symmetric); CheckCavity then checks the result with the rest of the fan.
+struct MarkFlips {
+  TetView m;
+  const Candidate* cand;
+  const CavityTuple* tuples;
+  const int* failed;
+  GDR_HD void operator()(long long i) const {
+    const CavityTuple& h = tuples[i];
+    if (is_sub_tuple(h) || result_of(h) != kCavity || failed[h.pt]) return;
+    const Candidate& c = cand[h.pt];
+    const int t = h.elem;
+    for (int f = 0; f < 4; ++f) {
+      const int s = m.tsub[4 * t + f];
+      if (s < 0 || !one_sided(m, s) || cavity_face(m, h.pt, t, f) != kFaceFan) continue;
+      int v[3];
+      for (int k = 0; k < 3; ++k) v[k] = m.tv[4 * t + face_corner(f, k)];
+      for (int e = 0; e < 3; ++e) {
+        const int o = m.sv[3 * s + e], x = m.sv[3 * s + (e + 1) % 3], y = m.sv[3 * s + (e + 2) % 3];
+        if (is_subseg(m, t, x, y)) continue;
+        FanNeighbour r;
+        if (!fan_neighbour(m, h.pt, t, f, x, y, r) || r.split >= 0) continue;
+        const int s2 = m.tsub[4 * r.u + r.g];
+        if (s2 < 0 || s2 == s || m.sfacet[s2] != m.sfacet[s] || !one_sided(m, s2)) continue;
+        int w = -1;
+        for (int q = 0; q < 3; ++q) {
+          const int z = m.tv[4 * r.u + face_corner(r.g, q)];
+          if (z != x && z != y) w = z;
+        }
+        if (!(pred::insphere(pt(m, v[0]), pt(m, v[1]), pt(m, v[2]), c.p, pt(m, w)) > 0)) continue;
+        const bool lo = s < s2;
+        const int vmin = x < y ? x : y, vmax = x < y ? y : x;
+        // Own flipped tetrahedron: the face's corners with one of the edge's replaced by w;
+        // the partner's: its corners with the other replaced by o.
+        int a[3], b[3];
+        for (int k = 0; k < 3; ++k) {
+          a[k] = v[k] == (lo ? vmax : vmin) ? w : v[k];
+          const int z = m.tv[4 * r.u + face_corner(r.g, k)];
+          b[k] = z == (lo ? vmin : vmax) ? o : z;
+        }
+        const double va = pred::orient3d(pt(m, a[0]), pt(m, a[1]), pt(m, a[2]), c.p);
+        const double vb = pred::orient3d(pt(m, b[0]), pt(m, b[1]), pt(m, b[2]), c.p);
+        if (!(va > 0) || !(vb > 0) || rounding_flat(pt(m, a[0]), pt(m, a[1]), pt(m, a[2]), c.p, va) ||
+            rounding_flat(pt(m, b[0]), pt(m, b[1]), pt(m, b[2]), c.p, vb))
+          continue;
+        m.saux[s] = w;
+        exec::atomic_or(&m.sflag[s], kSubFlip | (lo ? int(kSubFlipLo) : 0) | (kSubFlipEdge0 << e));
+      }
+    }
+  }
+};
+
+// A flip is kept only when both subfaces marked the same edge, each naming the other's corner.
+GDR_HD_INLINE bool flip_consistent(const TetView& m, int j, int t, int f) {
+  const SubfaceFlip fl = subface_flip(m, m.tsub[4 * t + f]);
+  if (!fl.on()) return true;
+  if (!fl.valid) return false;
+  FanNeighbour r;
+  if (!fan_neighbour(m, j, t, f, fl.vmin, fl.vmax, r) || r.split >= 0) return false;
+  const SubfaceFlip other = subface_flip(m, m.tsub[4 * r.u + r.g]);
+  return other.on() && other.valid && other.lo != fl.lo && other.own == fl.other && other.other == fl.own &&
+         other.vmin == fl.vmin && other.vmax == fl.vmax;
+}
+
 // Last exact checks before anything is written: every new tetrahedron must be positive, a
 // split subface must have its tetrahedra in the cavity, and every face two new tetrahedra
 // share (unless it is a new subface) must be locally Delaunay. Bowyer-Watson guarantees the
@@ -482,10 +654,17 @@ struct CheckCavity {
           failed[h.pt] = kFailStar;  // its tetrahedron on this face would be flat
           exec::atomic_or(&m.tflag[t], kMakeRoom);
         }
+        if (!flip_consistent(m, h.pt, t, f)) failed[h.pt] = kFailDelaunay;
+        int q[3];  // the new tetrahedron's corners besides p (a flip replaces one)
+        fan_corners(m, t, f, q);
         for (int e = 0; e < 3; ++e) {
-          const int x = e == 0 ? b : a, y = e == 2 ? b : d;  // the edge opposite corner e
+          const int x = q[(e + 1) % 3], y = q[(e + 2) % 3];  // the edge opposite corner e
           FanNeighbour r;
-          const bool inside = fan_neighbour(m, h.pt, t, f, x, y, r);
+          const bool inside = fan_across(m, h.pt, t, f, x, y, r);
+          if (r.broken) {
+            failed[h.pt] = kFailStar;
+            continue;
+          }
           if (r.split >= 0 && !compute_subface_fan_edge(m, c, h.pt, r.split, edge_opposite(m, r.split, x, y))) {
             // The face (x, y, p) would lie in the facet across new subfaces: xy is inside the
             // subface cavity but a tetrahedron at xy is not in the cavity. It is split first.
@@ -493,17 +672,13 @@ struct CheckCavity {
             exec::atomic_or(&m.tflag[t], kMakeRoom);
           }
           if (!inside || r.split >= 0) continue;
-          int w = -1;  // the other new tetrahedron's corner off the shared face
-          for (int q = 0; q < 3; ++q) {
-            const int z = m.tv[4 * r.u + face_corner(r.g, q)];
-            if (z != x && z != y) w = z;
-          }
-          if (pred::insphere(pt(m, a), pt(m, b), pt(m, d), c.p, pt(m, w)) > 0) {
+          const int w = fan_apex(m, r.u, r.g, x, y);  // the other new tetrahedron's corner off the shared face
+          if (pred::insphere(pt(m, q[0]), pt(m, q[1]), pt(m, q[2]), c.p, pt(m, w)) > 0) {
             // Something must change before p can go in: the subsegment is split, or else the
             // tetrahedron is (for a point on a segment or facet), or the bad tetrahedron
             // asking for p is left as it is.
             failed[h.pt] = kFailDelaunay;
-            if (is_subseg(m, t, x, y) && !is_sharp_subseg(m, x, y))
+            if (corner_of(m, t, x) >= 0 && corner_of(m, t, y) >= 0 && is_subseg(m, t, x, y) && !is_sharp_subseg(m, x, y))
               exec::atomic_or(&m.tflag[t], kSplitEdge0 << edge_index(corner_of(m, t, x), corner_of(m, t, y)));
             else if (c.kind != kFreeSplit)
               exec::atomic_or(&m.tflag[t], kMakeRoom);
@@ -597,11 +772,17 @@ struct CreateTets {
       const int nt = m.aux[t] + r++;
       int* nv = m.tv + 4 * nt;
       int corner[3];
-      for (int k = 0; k < 3; ++k) {
-        corner[k] = face_corner(f, k);
-        nv[k] = m.tv[4 * t + corner[k]];
-      }
+      for (int k = 0; k < 3; ++k) corner[k] = face_corner(f, k);
+      fan_corners(m, t, f, nv);
       nv[3] = p;
+      // A flip brings in the partner's corner: its edges come from the partner's tetrahedron.
+      const SubfaceFlip fl = subface_flip(m, m.tsub[4 * t + f]);
+      int pu = -1;
+      if (fl.on()) {
+        FanNeighbour partner;
+        fan_neighbour(m, h.pt, t, f, fl.vmin, fl.vmax, partner);
+        pu = partner.u;
+      }
       const int outer = m.tn[4 * t + f];
       if (outer >= 0 && (m.tflag[outer >> 2] & kInCavity)) {
         // Another winner's cavity is across: link to its new tetrahedron on this face (it
@@ -628,9 +809,15 @@ struct CreateTets {
       int flags = kFresh;
       for (int k = 0; k < 3; ++k) {
         const int e_new = edge_index(k, (k + 1) % 3);
-        const int e_old = edge_index(corner[k], corner[(k + 1) % 3]);
-        if (tflags & (kSeg0 << e_old)) flags |= kSeg0 << e_new;
-        if (tflags & (kSplitEdge0 << e_old)) flags |= kSplitEdge0 << e_new;
+        int from = tflags, e_old = edge_index(corner[k], corner[(k + 1) % 3]);
+        if (pu >= 0 && (nv[k] == fl.other || nv[(k + 1) % 3] == fl.other)) {
+          const int x = nv[k], y = nv[(k + 1) % 3];
+          // The new diagonal lies inside the facet: no flags. Else an edge of the partner's.
+          from = x == fl.own || y == fl.own ? 0 : m.tflag[pu];
+          e_old = from ? edge_index(corner_of(m, pu, x), corner_of(m, pu, y)) : 0;
+        }
+        if (from & (kSeg0 << e_old)) flags |= kSeg0 << e_new;
+        if (from & (kSplitEdge0 << e_old)) flags |= kSplitEdge0 << e_new;
         if (c.kind == kSegmentSplit && (nv[k] == c.a || nv[k] == c.b))
           flags |= kSeg0 << edge_index(k, 3);
       }
@@ -699,7 +886,7 @@ struct LinkNew {
   GDR_HD void link_face(int j, int t, int f, int nt, int k) const {
     const int x = m.tv[4 * nt + (k + 1) % 3], y = m.tv[4 * nt + (k + 2) % 3];
     FanNeighbour r;
-    const bool inside = fan_neighbour(m, j, t, f, x, y, r);
+    const bool inside = fan_across(m, j, t, f, x, y, r);
     int new_sub = -1;
     if (r.split >= 0) {
       const int e = edge_opposite(m, r.split, x, y);
@@ -713,11 +900,10 @@ struct LinkNew {
       const int other = m.aux[r.u] + fan_rank(m, j, r.u, r.g);
       // In the other new tetrahedron (corners of face g, p) the face at xy is opposite the
       // corner that is neither x nor y.
-      int ko = 0;
-      for (int q = 0; q < 3; ++q) {
-        const int v = m.tv[4 * r.u + face_corner(r.g, q)];
-        if (v != x && v != y) ko = q;
-      }
+      int v[3], ko = 0;
+      fan_corners(m, r.u, r.g, v);
+      for (int q = 0; q < 3; ++q)
+        if (v[q] != x && v[q] != y) ko = q;
       m.tn[4 * nt + k] = 4 * other + ko;
     } else {
       m.tn[4 * nt + k] = -1;
@@ -731,6 +917,26 @@ struct LinkNew {
     const int* v = m.tv + 4 * nt;
     const int side = subface_side(m, s, v[face_corner(k, 0)], v[face_corner(k, 1)]);
     m.st[2 * s + side] = 4 * nt + k;
+  }
+};
+
+// After LinkNew: flipped subfaces take their new corner (in the place of the one they lost,
+// so they turn as before) and drop their flip marks.
+struct FinishFlips {
+  TetView m;
+  const CavityTuple* tuples;
+  const int* failed;
+  GDR_HD void operator()(long long i) const {
+    const CavityTuple& h = tuples[i];
+    if (is_sub_tuple(h) || result_of(h) != kCavity || failed[h.pt]) return;
+    for (int f = 0; f < 4; ++f) {
+      const int s = m.tsub[4 * h.elem + f];
+      const SubfaceFlip fl = subface_flip(m, s);
+      if (!fl.on() || cavity_face(m, h.pt, h.elem, f) != kFaceFan) continue;
+      for (int k = 0; k < 3; ++k)
+        if (m.sv[3 * s + k] == fl.replaced()) m.sv[3 * s + k] = fl.other;
+      m.sflag[s] &= ~int(kSubFlipBits);
+    }
   }
 };
 

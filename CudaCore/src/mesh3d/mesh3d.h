@@ -51,6 +51,13 @@ enum : int {
   kSubNoSplit = 32,  // its circumcentre lies outside its facet and encroaches no subsegment:
                      // it is left as it is (TetGen does the same), and so are the bad
                      // tetrahedra whose circumcentres it blocks
+  // During one insertion (cavity.h, MarkFlips): the boundary subface and its neighbour across
+  // edge e trade that edge for the other diagonal of their quadrilateral. kSubFlipLo tells
+  // which of the two it is; saux holds the neighbour's corner off the edge.
+  kSubFlip = 64,
+  kSubFlipLo = 128,
+  kSubFlipEdge0 = 256,  // bits 8-10: the edge (opposite corner e)
+  kSubFlipBits = kSubFlip | kSubFlipLo | 7 * kSubFlipEdge0,
 };
 
 struct TetView {

@@ -488,6 +488,7 @@ struct Engine {
     Ops::for_each(nt, m3d::VerifyClaims{mv, cand.data(), H.data(), failed.data(),
                                         params.strategies.touching});
     Ops::for_each(nt, m3d::SetInCavity{mv, H.data(), failed.data(), 1});
+    Ops::for_each(nt, m3d::MarkFlips{mv, cand.data(), H.data(), failed.data()});
     Ops::for_each(nt, m3d::CheckCavity{mv, cand.data(), H.data(), failed.data()});
     Ops::for_each(nt, m3d::SetInCavity{mv, H.data(), failed.data(), 0});
   }
@@ -580,6 +581,7 @@ struct Engine {
     Ops::for_each(nt, m3d::CreateTets{mv, cs, tp, fl, pid});
     int* ctr = counters.data();
     Ops::for_each(nt, m3d::LinkNew{mv, tp, fl, ctr + kError});
+    Ops::for_each(nt, m3d::FinishFlips{mv, tp, fl});
     Ops::for_each(ns, m3d::WritePoints{mv, cs, fl, pid});
     Ops::for_each(nt, [=] GDR_HD(long long i) {
       const Tuple& h = tp[i];
