@@ -103,8 +103,9 @@ public:
    * Input triangles that meet within this many degrees of flat form one facet whose inner
    * edges the mesh need not keep (TetGen's -p facet tolerance, 0.1 there by default): far
    * fewer points where a curved or rounded surface was cut into nearly flat triangles, and
-   * the boundary follows the input within that bend. Clamped to [0, 5]; 0 (default) keeps
-   * every edge between two facets that are not exactly coplanar.
+   * the boundary follows the input within that bend. Clamped to [0, 5]; default 0.1 (as
+   * TetGen: faces of a part turned to an angle are flat only up to rounding); 0 keeps every
+   * edge between two facets that are not exactly coplanar.
    */
   vtkSetClampMacro(CoplanarAngle, double, 0.0, 5.0);
   vtkGetMacro(CoplanarAngle, double);
@@ -161,7 +162,7 @@ protected:
   double RadiusEdgeRatio = 2.0;
   double MinimumDihedralAngle = 0.0;
   double SliverAngle = 0.0;
-  double CoplanarAngle = 0.0;
+  double CoplanarAngle = 0.1;
   double MaximumVolume = 0.0;
   vtkIdType MaximumSteinerPoints = -1;
   int Backend = AUTO;

@@ -144,7 +144,7 @@ Result run_gdr_tet(const Case& c, Inputs& inputs, const TetBounds& b, bool valid
   o.max_volume = b.max_volume;
   o.max_steiner_points = static_cast<long long>(c.number("max_steiner", -1));
   o.sliver_angle = c.number("sliver_angle", 0);  // TetGen smooths by default (-O2); we only on request
-  o.coplanar_angle = c.number("coplanar_angle", 0);  // TetGen merges within 0.1 degrees by default
+  o.coplanar_angle = c.number("coplanar_angle", gdr::kTetGenFacetTolerance);  // TetGen's default too
   o.backend = c.runner == "gdr-tet-gpu" ? gdr::Backend::Gpu : gdr::Backend::Cpu;
   const int repeat = std::max(1, static_cast<int>(c.number("repeat", 1)));
   const double timeout = c.number("timeout", 600);

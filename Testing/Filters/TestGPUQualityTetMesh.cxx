@@ -439,19 +439,22 @@ void TestSliverAngle()
   CHECK(filter->GetSliverAngle() == 30);
 }
 
-// CoplanarAngle (TetGen's facet tolerance): the cube whose top is a fan of skinny, nearly
-// coplanar triangles meshes with fewer points when they merge into one facet; the mesh is
-// valid with its subfaces allowed to bend from the input triangles, and not without.
+// CoplanarAngle (TetGen's facet tolerance, 0.1 degrees by default as TetGen's): the cube
+// whose top is a fan of skinny, nearly coplanar triangles meshes with fewer points when they
+// merge into one facet than kept exactly (0); the mesh is valid with its subfaces allowed to
+// bend from the input triangles, and not without.
 void TestCoplanarAngle()
 {
   const gdr::Surface input = gdr::test::cube_with_rough_top(8);
   vtkSmartPointer<vtkPolyData> pd = PolyDataOf(input);
   vtkNew<vtkGPUQualityTetMesh> filter;
+  CHECK(filter->GetCoplanarAngle() == 0.1);
   EventLog log;
   log.Watch(filter);
   filter->SetInputData(pd);
   filter->SetBackendToCPU();
   filter->SetRadiusEdgeRatio(1.4);
+  filter->SetCoplanarAngle(0);
   filter->Update();
   CHECK(log.Errors.empty());
   Validate(filter, &input, 0);

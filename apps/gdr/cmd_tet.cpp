@@ -69,11 +69,12 @@ Quality and size:
                           otherwise an automatic cap, reported in the summary)
 Input surface:
   --coplanar-angle DEG    input triangles meeting within DEG of flat form one facet whose
-                          inner edges the mesh need not keep (TetGen's -p facet tolerance,
-                          0.1 there by default); the boundary then follows the input within
-                          that bend, and far fewer points go where a curved or rounded
-                          surface was cut into near-flat triangles (default 0: every edge
-                          between two facets that are not exactly coplanar is kept; at most 5)
+                          inner edges the mesh need not keep (TetGen's -p facet tolerance;
+                          default 0.1 as TetGen's, at most 5); the boundary then follows the
+                          input within that bend, far fewer points go where a curved or
+                          rounded surface was cut into near-flat triangles, and the faces of
+                          a part turned to an angle (flat only up to rounding) mesh well.
+                          0: every edge between two facets not exactly coplanar is kept
 Algorithm:
   --cdt-only              only the constrained Delaunay tetrahedralization, no refinement
   --backend auto|gpu|cpu  where to refine (default auto: GPU for large inputs when present)

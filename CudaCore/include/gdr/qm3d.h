@@ -35,12 +35,15 @@ struct QualityTetOptions {
   // Input triangles that meet within this many degrees of flat form one facet: the edge
   // between them is no segment, and refinement may flip it away, so the mesh boundary
   // follows the input within that bend instead of keeping every input edge (TetGen's -p
-  // facet tolerance, 0.1 degrees by default there). A merged facet bends at most
-  // kMergedFacetCone degrees in all; beyond, a segment stays. 0 (default): only exactly
-  // coplanar triangles merge, and every input edge between two facets is kept (unless
-  // TetGen stops on an internal assertion: then the tetrahedralization is tried again,
-  // with a warning, at kTetGenFacetTolerance). At most 5.
-  double coplanar_angle = 0.0;
+  // facet tolerance). A merged facet bends at most kMergedFacetCone degrees in all; beyond,
+  // a segment stays. Default kTetGenFacetTolerance, as TetGen: the flat faces of a CAD part
+  // turned to an angle (or stored in single precision) are planar only up to rounding, and
+  // kept triangle by triangle their edges are segments at 180 degrees whose splits fail on
+  // rounding (a quarter of the volume left bad). 0: only exactly coplanar triangles merge,
+  // and every input edge between two facets is kept (unless TetGen stops on an internal
+  // assertion: then the tetrahedralization is tried again, with a warning, at
+  // kTetGenFacetTolerance). At most 5.
+  double coplanar_angle = kTetGenFacetTolerance;
   bool refine = true;      // false: only the constrained Delaunay tetrahedralization
   // Sliver removal after refinement (TetGen's -O, by vertex smoothing only): interior
   // Steiner points of tetrahedra with a dihedral angle below this many degrees (or above
