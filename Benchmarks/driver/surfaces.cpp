@@ -1,5 +1,8 @@
 // Generated closed surfaces for the 3D benchmarks, so that no large file is committed:
-//   gen:surface:base=FILE:subdiv=K   midpoint subdivision of a closed surface, K times
+//   gen:surface:base=FILE:subdiv=K[:turn=1]   midpoint subdivision of a closed surface, K
+//                                    times; turn=1 then turns it (0.7 rad about z, 0.4 about
+//                                    x) and rounds it to single precision, as a CAD part
+//                                    exported to binary STL at an angle is
 //   gen:torus:triangles=N:bump=A     a bumpy torus of about N triangles
 // Both are checked by the mesher's own surface checks when a case runs (an invalid surface
 // is an error of that case, before anything is timed).
@@ -143,7 +146,7 @@ gdr::Surface generate_surface(const std::string& spec, const std::string& data_d
     }
   };
   if (kind == "surface") {
-    refuse_unknown({"base", "subdiv"});
+    refuse_unknown({"base", "subdiv", "turn"});
     const auto base = parts.find("base");
     if (base == parts.end())
       throw gdr::Error(gdr::Status::InvalidInput, "'" + spec + "': base=FILE is required");
@@ -156,6 +159,13 @@ gdr::Surface generate_surface(const std::string& spec, const std::string& data_d
       throw gdr::Error(gdr::Status::InvalidInput, "'" + spec + "': subdiv must be 0..6");
     gdr::Surface s = gdr::io::read_surface(path);
     for (int i = 0; i < static_cast<int>(k); ++i) s = midpoint_subdivide(s);
+    if (spec_number(parts, "turn", 0, spec) != 0) {
+      const double c = std::cos(0.7), sn = std::sin(0.7), c2 = std::cos(0.4), s2 = std::sin(0.4);
+      for (gdr::Point3& p : s.points) {
+        const double x = c * p.x - sn * p.y, y = sn * p.x + c * p.y;
+        p = {double(float(x)), double(float(c2 * y - s2 * p.z)), double(float(s2 * y + c2 * p.z))};
+      }
+    }
     return s;
   }
   if (kind == "torus") {
