@@ -324,7 +324,8 @@ struct Engine {
     if (crit.dihedral && dm.npts > 4LL * initial_points) crit.sliver_split_ratio2 = 1.0;
     Ops::for_each(nl, ComputeSplittingPoints{dm.view(), crit, list.data(), cand_all.data(),
                                              0x9e3779b9u * static_cast<unsigned>(iter + 1),
-                                             params.strategies.worst_first, stagnant, keep_below});
+                                             params.strategies.worst_first, stagnant, keep_below,
+                                             segment_failures.size() == dm.sharp.size() ? segment_failures.data() : nullptr});
     clock.template stop<Space>("split+locate");
   }
 
@@ -545,7 +546,10 @@ struct Engine {
     Ops::for_each(ns, [=] GDR_HD(long long j) {
       if (cs[j].kind != m3d::kSegmentSplit || (fl[j] != m3d::kFailStar && fl[j] != m3d::kFailDelaunay)) return;
       const int g = m3d::segment_of(mv, cs[j].a, cs[j].b);
-      if (g >= 0 && (sharp[g] & m3d::kNearlyFlat) && exec::atomic_add(&nf[g], 1) + 1 == kBlockAfter) {
+      if (g < 0) return;
+      // Counted for every segment: one that keeps failing waits behind the others (its
+      // remedy, a subsegment it encroaches, goes first: ComputeSplittingPoints).
+      if (exec::atomic_add(&nf[g], 1) + 1 == kBlockAfter && (sharp[g] & m3d::kNearlyFlat)) {
         sharp[g] |= m3d::kSharp;
         exec::atomic_add(blocked, 1);
       }

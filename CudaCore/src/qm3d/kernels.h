@@ -377,6 +377,10 @@ struct ComputeSplittingPoints {
   bool worst_first;  // shape-bad tetrahedra by radius-edge ratio; false: all larger first
   bool shuffle;      // random order within each class, after an iteration without headway
   u64 keep_below;    // ids at or above this do not compete this iteration (engine.h filter)
+  // Per input segment, its splits that found no valid fan (engine.h); null: none yet. A
+  // segment that failed twice ranks last among segments, so that what it waits for (a
+  // subsegment it encroaches, CheckCavity) is split before it tries again.
+  const int* segment_failures;
   GDR_HD void operator()(long long j) const {
     if (shuffle_id(static_cast<unsigned>(j), salt) >= keep_below) {
       out[j].kind = m3d::kDropped;
@@ -393,6 +397,10 @@ struct ComputeSplittingPoints {
     const unsigned id = shuffle_id(static_cast<unsigned>(j), salt);
     if (slot >= kSlotEdge0) {
       make_segment_candidate(m, t, slot - kSlotEdge0, id, cand);
+      if (segment_failures && cand.kind == m3d::kSegmentSplit) {
+        const int g = m3d::segment_of(m, cand.a, cand.b);
+        if (g >= 0 && segment_failures[g] >= 2) cand.prio = exec::make_priority(kClassSegment, 0.0f, id);
+      }
       return;
     }
     if (slot >= kSlotFace0) {

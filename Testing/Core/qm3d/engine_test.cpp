@@ -391,7 +391,9 @@ TEST(QualityTetMesh, CadPartSegmentsAreNotBlocked) {
 // new point inside (its two new tetrahedra there would not be locally Delaunay, whatever
 // the point), and refinement stalled with 15-20% of the volume bad at B = 2 (TetGen 1.5:
 // 0.07-0.19%). The subfaces now flip their diagonal as the point goes in (cavity.h,
-// MarkFlips): a fraction of a percent, valid and constrained Delaunay.
+// MarkFlips): a fraction of a percent, valid and constrained Delaunay. At B = 1.4 points on
+// the plates' edges, beside the posts standing on them, then saw a post's face from behind
+// (2.5-5.3% of the volume bad): the post's base edge they encroach is split first now.
 TEST(QualityTetMesh, TurnedCadPartInSinglePrecision) {
   gdr::Surface s;
   if (!read_data_surface("thingi10k_288351.off", s)) GTEST_SKIP() << "thingi10k_288351.off is absent";
@@ -401,12 +403,15 @@ TEST(QualityTetMesh, TurnedCadPartInSinglePrecision) {
     p = {double(float(x)), double(float(c2 * y - s2 * p.z)), double(float(s2 * y + c2 * p.z))};
   }
   for (gdr::Backend b : backends()) {
-    gdr::QualityTetOptions o;
-    o.backend = b;
-    const gdr::QualityTetResult r = mesh_validated(s, o);
-    EXPECT_LT(r.stats.bad_volume_percent, 2.0);
-    std::printf("thingi10k_288351 turned, float, B = 2, %s: %lld tetrahedra, %.3f%% of the volume bad\n",
-                backend_name(b), r.stats.output_tets, r.stats.bad_volume_percent);
+    for (double B : {2.0, 1.4}) {
+      gdr::QualityTetOptions o;
+      o.backend = b;
+      o.radius_edge_ratio = B;
+      const gdr::QualityTetResult r = mesh_validated(s, o);
+      EXPECT_LT(r.stats.bad_volume_percent, 1.0) << "B = " << B;
+      std::printf("thingi10k_288351 turned, float, B = %.1f, %s: %lld tetrahedra, %.3f%% of the volume bad\n", B,
+                  backend_name(b), r.stats.output_tets, r.stats.bad_volume_percent);
+    }
   }
 }
 
