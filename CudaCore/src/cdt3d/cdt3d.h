@@ -108,7 +108,8 @@ m3d::HostTetMesh delaunay_tetrahedralization(const std::vector<double>& xyz);
 // of spacing h = `spacing_factor` times the mean triangle edge length next to the surface
 // and coarser deeper in, that lie at least h/2 from every triangle and are not connected to
 // the outside. Those in cavities or holes are kept (initial_cdt drops them). Empty for a
-// lattice of under 64 cells.
-std::vector<double> interior_seeds(const Plc& plc, double spacing_factor);
+// lattice of under 64 cells, unless `min_cells` > 0: then the spacing is cut to make about
+// that many cells over the bounding box.
+std::vector<double> interior_seeds(const Plc& plc, double spacing_factor, double min_cells = 0);
 
 }  // namespace gdr::cdt3d

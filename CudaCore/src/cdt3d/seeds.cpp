@@ -60,7 +60,7 @@ double dist2_to_triangle(V3 p, V3 a, V3 b, V3 c) {
 
 }  // namespace
 
-std::vector<double> interior_seeds(const Plc& plc, double spacing_factor) {
+std::vector<double> interior_seeds(const Plc& plc, double spacing_factor, double min_cells) {
   std::vector<double> seeds;
   const std::size_t nt = plc.triangles.size();
   if (nt == 0 || spacing_factor <= 0) return seeds;
@@ -80,7 +80,10 @@ std::vector<double> interior_seeds(const Plc& plc, double spacing_factor) {
   constexpr double kMaxCells = 4e6;
   const double cells = (size.x / h + 3) * (size.y / h + 3) * (size.z / h + 3);
   if (cells > kMaxCells) h *= std::cbrt(cells / kMaxCells);
-  if ((size.x / h + 1) * (size.y / h + 1) * (size.z / h + 1) < 64) return seeds;
+  if ((size.x / h + 1) * (size.y / h + 1) * (size.z / h + 1) < 64) {
+    if (!(min_cells > 0)) return seeds;
+    h = std::cbrt(std::max(size.x, h * 1e-6) * std::max(size.y, h * 1e-6) * std::max(size.z, h * 1e-6) / min_cells);
+  }
   // The lattice covers the bounding box and one cell more on every side: the cells of that
   // layer are outside the surface, where the flood of the outside starts.
   lo = {lo.x - h, lo.y - h, lo.z - h};

@@ -97,6 +97,24 @@ long long automatic_steiner_cap(const m3d::HostTetMesh& m, std::size_t estimated
       std::max({200.0 * m.points(), 1e6, 2.0 * static_cast<double>(estimated)}));
 }
 
+// The share of the volume in the tetrahedra refinement left bad (rounded; to compare runs).
+double bad_volume_share(const qm3d::MeshResult& out) {
+  auto vol6 = [&](int t) {
+    const int* v = &out.tv[4 * t];
+    const double* a = &out.xyz[3 * v[0]];
+    double u[3][3];
+    for (int k = 0; k < 3; ++k)
+      for (int d = 0; d < 3; ++d) u[k][d] = out.xyz[3 * v[k + 1] + d] - a[d];
+    return std::abs(u[0][0] * (u[1][1] * u[2][2] - u[1][2] * u[2][1]) -
+                    u[0][1] * (u[1][0] * u[2][2] - u[1][2] * u[2][0]) +
+                    u[0][2] * (u[1][0] * u[2][1] - u[1][1] * u[2][0]));
+  };
+  double all = 0, bad = 0;
+  for (int t = 0; t < out.tets(); ++t) all += vol6(t);
+  for (const int code : out.bad) bad += vol6(code >> 1);
+  return all > 0 ? bad / all : 0.0;
+}
+
 }  // namespace
 
 namespace qm3d {
@@ -182,9 +200,9 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
   progress(0.02, "constrained Delaunay tetrahedralization");
   auto t0 = Clock::now();
   const qm3d::Strategies strategies = qm3d::strategies_from_environment();
-  const auto cdt = [&] {
+  const auto cdt = [&](double min_cells = 0) {
     const std::vector<double> seeds = options.refine && strategies.interior_seeds
-                                          ? cdt3d::interior_seeds(plc, kSeedSpacing)
+                                          ? cdt3d::interior_seeds(plc, kSeedSpacing, min_cells)
                                           : std::vector<double>{};
     return cdt3d::initial_cdt(plc, cb, seeds);
   };
@@ -236,17 +254,52 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
   t0 = Clock::now();
   qm3d::MeshResult out;
   qm3d::EngineResult er;
-  try {
-    if (st.backend_used == Backend::Gpu) {
+  const auto refine = [&] {
+    try {
+      if (st.backend_used == Backend::Gpu) {
 #if defined(GDR_HAVE_CUDA)
-      er = qm3d::refine_mesh_cuda(mesh, out, params, engine_cb);
-      mark_gpu_warm();
+        er = qm3d::refine_mesh_cuda(mesh, out, params, engine_cb);
+        mark_gpu_warm();
 #endif
-    } else {
-      er = qm3d::refine_mesh_cpu(mesh, out, params, engine_cb);
+      } else {
+        er = qm3d::refine_mesh_cpu(mesh, out, params, engine_cb);
+      }
+    } catch (const std::bad_alloc&) {
+      throw Error(Status::OutOfDeviceMemory, "out of memory during refinement");
     }
-  } catch (const std::bad_alloc&) {
-    throw Error(Status::OutOfDeviceMemory, "out of memory during refinement");
+  };
+  refine();
+  // A coarse surface (a few hundred triangles, too few for the lattice of interior seeds)
+  // whose points are largely cospherical (a part turned on a lathe: every ring of points on
+  // one circle) has a CDT whose tetrahedra's circumspheres span the part: every split's
+  // cavity holds half the mesh, the splits overlap and fail together, and refinement stalls
+  // with much of the volume bad (the bundled bushing: 46% at B = 1.4). Then the CDT is made
+  // again with a finer lattice of seeds inside (bushing: 0.1-0.4%), and refined again.
+  constexpr double kRetryBadShare = 0.01, kRetryCells = 4096;
+  if (options.refine && er.stalled && st.interior_seeds == 0 && strategies.interior_seeds &&
+      bad_volume_share(out) > kRetryBadShare) {
+    if (aborted()) throw Error(Status::Aborted, "aborted by the caller");
+    progress(0.5, "constrained Delaunay tetrahedralization again, with interior points");
+    qm3d::MeshResult first_out = std::move(out);
+    const qm3d::EngineResult first_er = er;
+    m3d::HostTetMesh first_mesh = std::move(mesh);
+    const auto t1 = Clock::now();
+    mesh = cdt(kRetryCells);
+    const long long seeds = std::count(mesh.ptype.begin(), mesh.ptype.end(), m3d::kFreePoint);
+    qm3d::find_sharp_features(mesh, 65.0, strategies.acute_vertices ? 60.0 : 0.0);
+    for (std::size_t g = 0; g < plc.segment_flat.size() && g < mesh.sharp.size(); ++g)
+      if (plc.segment_flat[g]) mesh.sharp[g] |= m3d::kNearlyFlat;
+    st.cdt_seconds += since(t1);
+    out = qm3d::MeshResult{};
+    refine();
+    if (seeds > 0 && bad_volume_share(out) < bad_volume_share(first_out)) {
+      st.interior_seeds = seeds;
+      st.cdt_steiner_points = mesh.points() - static_cast<long long>(plc.points.size()) - seeds;
+    } else {  // no better: the first mesh stays
+      out = std::move(first_out);
+      er = first_er;
+      mesh = std::move(first_mesh);
+    }
   }
   if (options.refine) {
     st.refine_seconds = since(t0);

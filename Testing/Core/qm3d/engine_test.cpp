@@ -415,6 +415,27 @@ TEST(QualityTetMesh, TurnedCadPartInSinglePrecision) {
   }
 }
 
+// The bundled bushing (448 triangles, a part turned on a lathe: every ring of points on one
+// circle): too few triangles for the lattice of interior seeds, and its CDT's circumspheres
+// span the part, so every split's cavity held half the mesh, the splits overlapped and
+// failed together, and refinement stalled with 46% of the volume bad at B = 1.4 (36% at 2).
+// A stalled run without seeds is now redone from a CDT with a finer lattice inside.
+TEST(QualityTetMesh, CoarseLatheTurnedPartIsRefinedThroughout) {
+  const gdr::Surface s = gdr::io::read_surface(std::string(GDR_DATA_DIR) + "/../apps/gdr/examples/bushing.off");
+  for (gdr::Backend b : backends()) {
+    for (double B : {2.0, 1.4}) {
+      gdr::QualityTetOptions o;
+      o.backend = b;
+      o.radius_edge_ratio = B;
+      const gdr::QualityTetResult r = mesh_validated(s, o);
+      EXPECT_GT(r.stats.interior_seeds, 0);
+      EXPECT_LT(r.stats.bad_volume_percent, B == 2.0 ? 1.0 : 5.0) << "B = " << B;
+      std::printf("bushing, B = %.1f, %s: %lld tetrahedra, %lld seeds, %.3f%% of the volume bad\n", B,
+                  backend_name(b), r.stats.output_tets, r.stats.interior_seeds, r.stats.bad_volume_percent);
+    }
+  }
+}
+
 // A part far from the origin (a scan in map coordinates: spot, of size 2, at 1e6): the
 // output's coordinates are rounded to 1.2e-10 there, which puts points on segments and facets
 // that far off them, more than the validator's relative tolerance on spot's small triangles;
