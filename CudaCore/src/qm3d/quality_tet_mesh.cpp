@@ -99,19 +99,17 @@ long long automatic_steiner_cap(const m3d::HostTetMesh& m, std::size_t estimated
 
 // The share of the volume in the tetrahedra refinement left bad (rounded; to compare runs).
 double bad_volume_share(const qm3d::MeshResult& out) {
-  auto vol6 = [&](int t) {
-    const int* v = &out.tv[4 * t];
-    const double* a = &out.xyz[3 * v[0]];
-    double u[3][3];
-    for (int k = 0; k < 3; ++k)
-      for (int d = 0; d < 3; ++d) u[k][d] = out.xyz[3 * v[k + 1] + d] - a[d];
-    return std::abs(u[0][0] * (u[1][1] * u[2][2] - u[1][2] * u[2][1]) -
-                    u[0][1] * (u[1][0] * u[2][2] - u[1][2] * u[2][0]) +
-                    u[0][2] * (u[1][0] * u[2][1] - u[1][1] * u[2][0]));
+  auto volume = [&](int t) {
+    Point3 p[4];
+    for (int k = 0; k < 4; ++k) {
+      const double* x = &out.xyz[3 * out.tv[4 * t + k]];
+      p[k] = {x[0], x[1], x[2]};
+    }
+    return std::abs(tet_volume(p[0], p[1], p[2], p[3]));
   };
   double all = 0, bad = 0;
-  for (int t = 0; t < out.tets(); ++t) all += vol6(t);
-  for (const int code : out.bad) bad += vol6(code >> 1);
+  for (int t = 0; t < out.tets(); ++t) all += volume(t);
+  for (const int code : out.bad) bad += volume(code >> 1);
   return all > 0 ? bad / all : 0.0;
 }
 
@@ -227,9 +225,12 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
   st.interior_seeds = std::count(mesh.ptype.begin(), mesh.ptype.end(), m3d::kFreePoint);
   st.cdt_steiner_points = mesh.points() - static_cast<long long>(plc.points.size()) - st.interior_seeds;
   if (aborted()) throw Error(Status::Aborted, "aborted by the caller");
-  qm3d::find_sharp_features(mesh, 65.0, strategies.acute_vertices ? 60.0 : 0.0);
-  for (std::size_t g = 0; g < plc.segment_flat.size() && g < mesh.sharp.size(); ++g)
-    if (plc.segment_flat[g]) mesh.sharp[g] |= m3d::kNearlyFlat;
+  const auto mark_features = [&](m3d::HostTetMesh& m) {
+    qm3d::find_sharp_features(m, 65.0, strategies.acute_vertices ? 60.0 : 0.0);
+    for (std::size_t g = 0; g < plc.segment_flat.size() && g < m.sharp.size(); ++g)
+      if (plc.segment_flat[g]) m.sharp[g] |= m3d::kNearlyFlat;
+  };
+  mark_features(mesh);
 
   const std::size_t estimated = estimate_tets(mesh, plc.volume, smallest_volume_bound(options, input));
   st.backend_used = resolve_backend(options.backend, estimated, gpu_min_tets(options));
@@ -276,29 +277,28 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
   // with much of the volume bad (the bundled bushing: 46% at B = 1.4). Then the CDT is made
   // again with a finer lattice of seeds inside (bushing: 0.1-0.4%), and refined again.
   constexpr double kRetryBadShare = 0.01, kRetryCells = 4096;
+  double first_share = 0;
   if (options.refine && er.stalled && st.interior_seeds == 0 && strategies.interior_seeds &&
-      bad_volume_share(out) > kRetryBadShare) {
+      (first_share = bad_volume_share(out)) > kRetryBadShare) {
     if (aborted()) throw Error(Status::Aborted, "aborted by the caller");
     progress(0.5, "constrained Delaunay tetrahedralization again, with interior points");
-    qm3d::MeshResult first_out = std::move(out);
-    const qm3d::EngineResult first_er = er;
-    m3d::HostTetMesh first_mesh = std::move(mesh);
     const auto t1 = Clock::now();
     mesh = cdt(kRetryCells);
     const long long seeds = std::count(mesh.ptype.begin(), mesh.ptype.end(), m3d::kFreePoint);
-    qm3d::find_sharp_features(mesh, 65.0, strategies.acute_vertices ? 60.0 : 0.0);
-    for (std::size_t g = 0; g < plc.segment_flat.size() && g < mesh.sharp.size(); ++g)
-      if (plc.segment_flat[g]) mesh.sharp[g] |= m3d::kNearlyFlat;
     st.cdt_seconds += since(t1);
-    out = qm3d::MeshResult{};
-    refine();
-    if (seeds > 0 && bad_volume_share(out) < bad_volume_share(first_out)) {
-      st.interior_seeds = seeds;
-      st.cdt_steiner_points = mesh.points() - static_cast<long long>(plc.points.size()) - seeds;
-    } else {  // no better: the first mesh stays
-      out = std::move(first_out);
-      er = first_er;
-      mesh = std::move(first_mesh);
+    if (seeds > 0) {  // else the lattice found no room inside either: the first mesh stays
+      mark_features(mesh);
+      qm3d::MeshResult first_out = std::move(out);
+      const qm3d::EngineResult first_er = er;
+      out = qm3d::MeshResult{};
+      refine();
+      if (bad_volume_share(out) < first_share) {
+        st.interior_seeds = seeds;
+        st.cdt_steiner_points = mesh.points() - static_cast<long long>(plc.points.size()) - seeds;
+      } else {  // no better: the first mesh stays
+        out = std::move(first_out);
+        er = first_er;
+      }
     }
   }
   if (options.refine) {

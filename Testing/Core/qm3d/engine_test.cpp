@@ -404,10 +404,7 @@ TEST(QualityTetMesh, TurnedCadPartInSinglePrecision) {
   }
   for (gdr::Backend b : backends()) {
     for (double B : {2.0, 1.4}) {
-      gdr::QualityTetOptions o;
-      o.backend = b;
-      o.radius_edge_ratio = B;
-      const gdr::QualityTetResult r = mesh_validated(s, o);
+      const gdr::QualityTetResult r = mesh_validated(s, B, b);
       EXPECT_LT(r.stats.bad_volume_percent, 1.0) << "B = " << B;
       std::printf("thingi10k_288351 turned, float, B = %.1f, %s: %lld tetrahedra, %.3f%% of the volume bad\n", B,
                   backend_name(b), r.stats.output_tets, r.stats.bad_volume_percent);
@@ -424,10 +421,7 @@ TEST(QualityTetMesh, CoarseLatheTurnedPartIsRefinedThroughout) {
   const gdr::Surface s = gdr::io::read_surface(std::string(GDR_DATA_DIR) + "/../apps/gdr/examples/bushing.off");
   for (gdr::Backend b : backends()) {
     for (double B : {2.0, 1.4}) {
-      gdr::QualityTetOptions o;
-      o.backend = b;
-      o.radius_edge_ratio = B;
-      const gdr::QualityTetResult r = mesh_validated(s, o);
+      const gdr::QualityTetResult r = mesh_validated(s, B, b);
       EXPECT_GT(r.stats.interior_seeds, 0);
       EXPECT_LT(r.stats.bad_volume_percent, B == 2.0 ? 1.0 : 5.0) << "B = " << B;
       std::printf("bushing, B = %.1f, %s: %lld tetrahedra, %lld seeds, %.3f%% of the volume bad\n", B,
