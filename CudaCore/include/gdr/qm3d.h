@@ -19,7 +19,8 @@ namespace gdr {
 constexpr double kMergedFacetCone = 10.0;
 constexpr double kMergedFacetBend = 2 * kMergedFacetCone;
 // TetGen's own facet tolerance (degrees): the coplanar_angle of the retry when TetGen stops
-// on an internal assertion (flat faces of a part turned to an angle).
+// on an internal assertion or loops in every point order tried (flat faces of a part turned
+// to an angle).
 constexpr double kTetGenFacetTolerance = 0.1;
 
 struct QualityTetOptions {
@@ -40,8 +41,8 @@ struct QualityTetOptions {
   // turned to an angle (or stored in single precision) are planar only up to rounding, and
   // kept triangle by triangle their edges are segments at 180 degrees whose splits fail on
   // rounding (a quarter of the volume left bad). 0: only exactly coplanar triangles merge,
-  // and every input edge between two facets is kept (unless TetGen stops on an internal
-  // assertion: then the tetrahedralization is tried again, with a warning, at
+  // and every input edge between two facets is kept (unless TetGen fails in every point
+  // order tried: then the tetrahedralization is tried again, with a warning, at
   // kTetGenFacetTolerance). At most 5.
   double coplanar_angle = kTetGenFacetTolerance;
   bool refine = true;      // false: only the constrained Delaunay tetrahedralization

@@ -88,14 +88,13 @@ Plc check_surface(const Surface& surface, const CheckOptions& options = {},
 m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks = {},
                              const std::vector<double>& seeds = {});
 
-// TetGen stopped on one of its internal assertions (which would abort the process; see
-// cdt_tetgen.cpp). Seen on parts turned to an angle, whose flat faces meet at bends of
-// rounding size, each edge between them a segment: merging such faces avoids it.
+// TetGen's tetrahedralization stopped on one of its internal assertions, or did not finish,
+// in every point order tried (see tetgen_process.h). Seen on parts turned to an angle,
+// whose flat faces meet at bends of rounding size, each edge between them a segment:
+// merging such faces avoids it.
 class TetGenAborted : public Error {
  public:
-  TetGenAborted()
-      : Error(Status::InternalError,
-              "TetGen stopped on one of its internal assertions (printed on the standard error)") {}
+  explicit TetGenAborted(const std::string& what) : Error(Status::InternalError, what) {}
 };
 
 // The Delaunay tetrahedralization of the points xyz (3 per point; no constraints, TetGen

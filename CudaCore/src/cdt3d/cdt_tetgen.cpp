@@ -27,22 +27,21 @@
 #define TETLIBRARY
 #include <tetgen.h>
 
-#include <csetjmp>
-#include <csignal>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <mutex>
+#include <csignal>
+#include <random>
 #include <numeric>
 #include <unordered_map>
 
 #include "cdt3d/cdt3d.h"
 #include "cdt3d/geometry.h"
 #include "cdt3d/internal.h"
+#include "cdt3d/tetgen_process.h"
 #include "gdr/error.h"
 #include "mesh3d/tet_topology.h"
 
@@ -57,22 +56,27 @@ std::string str(long long v) { return std::to_string(v); }
   throw Error(Status::InternalError, "initial CDT: " + what);
 }
 
-// Fills TetGen's input. TetGen frees these arrays itself (tetgenio's destructor).
-void fill_input(const Plc& plc, const std::vector<double>& seeds, tetgenio& in) {
+// Fills TetGen's input, the PLC points and the seeds in `order` (TetGen's point k is our
+// point order[k]; TetGen's insertion order follows from it). TetGen frees these arrays
+// itself (tetgenio's destructor).
+void fill_input(const Plc& plc, const std::vector<double>& seeds, const std::vector<int>& order, tetgenio& in) {
   const int nin = static_cast<int>(plc.points.size());
-  const int np = nin + static_cast<int>(seeds.size() / 3);
+  const int np = static_cast<int>(order.size());
   const int nt = static_cast<int>(plc.triangles.size());
   const int nf = static_cast<int>(plc.facet_origin.size());
+  std::vector<int> at(np);  // TetGen's number of our point i
+  for (int k = 0; k < np; ++k) at[order[k]] = k;
   in.firstnumber = 0;
   in.numberofpoints = np;
   in.pointlist = new REAL[3 * static_cast<std::size_t>(np)];
   in.pointmarkerlist = new int[np];  // zeros: asks TetGen for Steiner point markers
-  for (int i = 0; i < nin; ++i) {
-    in.pointlist[3 * i] = plc.points[i].x;
-    in.pointlist[3 * i + 1] = plc.points[i].y;
-    in.pointlist[3 * i + 2] = plc.points[i].z;
+  for (int k = 0; k < np; ++k) {
+    const int i = order[k];
+    const double* seed = i < nin ? nullptr : &seeds[3 * static_cast<std::size_t>(i - nin)];
+    in.pointlist[3 * k] = seed ? seed[0] : plc.points[i].x;
+    in.pointlist[3 * k + 1] = seed ? seed[1] : plc.points[i].y;
+    in.pointlist[3 * k + 2] = seed ? seed[2] : plc.points[i].z;
   }
-  std::copy(seeds.begin(), seeds.end(), in.pointlist + 3 * static_cast<std::size_t>(nin));
   std::fill(in.pointmarkerlist, in.pointmarkerlist + np, 0);
   in.numberoffacets = nt;
   in.facetlist = new tetgenio::facet[nt];
@@ -85,7 +89,7 @@ void fill_input(const Plc& plc, const std::vector<double>& seeds, tetgenio& in) 
     tetgenio::init(&f.polygonlist[0]);
     f.polygonlist[0].numberofvertices = 3;
     f.polygonlist[0].vertexlist = new int[3];
-    for (int k = 0; k < 3; ++k) f.polygonlist[0].vertexlist[k] = plc.triangles[t][k];
+    for (int k = 0; k < 3; ++k) f.polygonlist[0].vertexlist[k] = at[plc.triangles[t][k]];
     in.facetmarkerlist[t] = plc.triangle_facet[t] + 1;
   }
   const int ns = static_cast<int>(plc.segments.size());
@@ -93,77 +97,29 @@ void fill_input(const Plc& plc, const std::vector<double>& seeds, tetgenio& in) 
   in.edgelist = new int[2 * static_cast<std::size_t>(ns)];
   in.edgemarkerlist = new int[ns];
   for (int g = 0; g < ns; ++g) {
-    in.edgelist[2 * g] = plc.segments[g][0];
-    in.edgelist[2 * g + 1] = plc.segments[g][1];
+    in.edgelist[2 * g] = at[plc.segments[g][0]];
+    in.edgelist[2 * g + 1] = at[plc.segments[g][1]];
     in.edgemarkerlist[g] = nf + 1 + g;
   }
 }
 
-// TetGen's assertions abort the process: the Debian library is built with them, and a part
-// turned to an angle (flat faces planar only up to rounding, each edge between them a
-// segment) failed one in facet recovery (tetgen.cxx 16432, fillcavity), which killed gdr,
-// and would kill ParaView with the plugin. While TetGen runs, SIGABRT from its thread jumps
-// back here and becomes an error (TetGen's memory for that run is lost). The handler is
-// installed for the call only; an abort on any other thread still ends the process.
-thread_local sigjmp_buf* tetgen_escape = nullptr;
-std::mutex tetgen_guard_lock;
-int tetgen_guards = 0;
-struct sigaction tetgen_old_abort;
-
-void on_tetgen_abort(int) {
-  if (tetgen_escape) siglongjmp(*tetgen_escape, 1);
-  sigaction(SIGABRT, &tetgen_old_abort, nullptr);
-  raise(SIGABRT);
-}
-
-struct AbortGuard {
-  AbortGuard() {
-    std::lock_guard<std::mutex> g(tetgen_guard_lock);
-    if (tetgen_guards++ == 0) {
-      struct sigaction sa {};
-      sa.sa_handler = on_tetgen_abort;
-      sigemptyset(&sa.sa_mask);
-      sigaction(SIGABRT, &sa, &tetgen_old_abort);
-    }
+// Back to our numbering after fill_input's `order`: TetGen's points 0..n-1 (n = order's
+// size) become ours, in the point arrays and in every tetrahedron and subface.
+void restore_order(const std::vector<int>& order, tetgenio& out) {
+  const int n = static_cast<int>(order.size());
+  std::vector<REAL> xyz(out.pointlist, out.pointlist + 3 * static_cast<std::size_t>(n));
+  std::vector<int> mark(n, 0);
+  for (int k = 0; k < n; ++k) {
+    for (int c = 0; c < 3; ++c) out.pointlist[3 * order[k] + c] = xyz[3 * static_cast<std::size_t>(k) + c];
+    if (out.pointmarkerlist) mark[order[k]] = out.pointmarkerlist[k];
   }
-  ~AbortGuard() {
-    tetgen_escape = nullptr;
-    std::lock_guard<std::mutex> g(tetgen_guard_lock);
-    if (--tetgen_guards == 0) sigaction(SIGABRT, &tetgen_old_abort, nullptr);
-  }
-};
-
-// tetrahedralize behind the guard: false when TetGen aborted. (No C++ objects of ours live
-// between the jump and its target.)
-bool tetrahedralize_guarded(tetgenbehavior* behavior, tetgenio* in, tetgenio* out) {
-  AbortGuard guard;
-  sigjmp_buf here;
-  if (sigsetjmp(here, 1) != 0) return false;
-  tetgen_escape = &here;
-  tetrahedralize(behavior, in, out);
-  tetgen_escape = nullptr;
-  return true;
-}
-
-// Runs TetGen with `switches`; its failures (thrown exit codes, aborts) become gdr::Error.
-void run_tetgen(const std::string& switches, tetgenio& in, tetgenio& out) {
-  tetgenbehavior behavior;
-  std::vector<char> buffer(switches.begin(), switches.end());
-  buffer.push_back('\0');
-  if (!behavior.parse_commandline(buffer.data()))
-    internal("TetGen rejected the switches '" + switches + "'");
-  try {
-    if (!tetrahedralize_guarded(&behavior, &in, &out)) throw TetGenAborted();
-  } catch (int code) {
-    switch (code) {
-      case 1: throw Error(Status::OutOfDeviceMemory, "TetGen ran out of memory");
-      case 3: throw Error(Status::SelfIntersectingInput, "TetGen found a self-intersection (within its tolerance)");
-      case 4: throw Error(Status::InvalidInput, "TetGen found a very small input feature (below its tolerance)");
-      case 5: throw Error(Status::InvalidInput, "TetGen found two very close input facets");
-      case 2: throw Error(Status::InternalError, "TetGen reported an internal error (code 2)");
-      default: throw Error(Status::InvalidInput, "TetGen failed (code " + str(code) + ")");
-    }
-  }
+  if (out.pointmarkerlist) std::copy(mark.begin(), mark.end(), out.pointmarkerlist);
+  const auto renumber = [&](int* v, std::size_t count) {
+    for (std::size_t j = 0; j < count; ++j)
+      if (v[j] >= 0 && v[j] < n) v[j] = order[v[j]];
+  };
+  renumber(out.tetrahedronlist, static_cast<std::size_t>(out.numberoftetrahedra) * out.numberofcorners);
+  renumber(out.trifacelist, 3 * static_cast<std::size_t>(out.numberoftrifaces));
 }
 
 std::uint64_t edge_key(int a, int b) {
@@ -532,23 +488,44 @@ m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks, const s
     std::fprintf(stderr, "gdr-trace cdt %s: %.3f s\n", what, std::chrono::duration<double>(now - last).count());
     last = now;
   };
-  tetgenio in, out;
-  fill_input(plc, seeds, in);
-  stamp("fill TetGen input");
-  try {
-    run_tetgen("pcnO0JQ", in, out);
-  } catch (const TetGenAborted&) {
-    throw;  // -Y on such input gave a mesh that was not constrained Delaunay: the caller merges
-  } catch (const Error& e) {
-    if (e.status() == Status::OutOfDeviceMemory) throw;
-    if (callbacks.warning)
-      callbacks.warning(std::string("TetGen's constrained Delaunay tetrahedralization failed (") + e.what() +
-                        "); retrying with the input surface kept unsplit (-Y): the result may not be "
-                        "constrained Delaunay everywhere");
-    out.deinitialize();
-    out.initialize();
-    run_tetgen("pcYnO0JQ", in, out);
+  // TetGen's facet recovery stops on an assertion, or loops, on some inputs (parts turned
+  // to an angle, scan-like surfaces) for some point orders only: each failure is retried
+  // with the points in another order, twice. The time limit is far beyond TetGen's own
+  // time (at most about 20 microseconds per point and triangle, typically 6).
+  const int np = static_cast<int>(plc.points.size() + seeds.size() / 3);
+  const char* limit_env = std::getenv("GDR_TETGEN_SECONDS");  // tests: forces the time limit
+  const double limit = limit_env ? std::atof(limit_env) : 10.0 + 1e-4 * (np + static_cast<double>(plc.triangles.size()));
+  std::vector<int> order(np);
+  std::iota(order.begin(), order.end(), 0);
+  const bool shuffle_first = std::getenv("GDR_TETGEN_SHUFFLE") != nullptr;  // tests: restore_order
+  tetgenio out;
+  constexpr int kOrders = 3;
+  for (int attempt = 0;; ++attempt) {
+    if (attempt > 0 || shuffle_first) std::shuffle(order.begin(), order.end(), std::mt19937(attempt + 1));
+    tetgenio in;
+    fill_input(plc, seeds, order, in);
+    if (attempt == 0) stamp("fill TetGen input");
+    TetGenOutcome outcome;
+    try {
+      outcome = run_tetgen_process("pcnO0JQ", in, out, limit, callbacks.abort);
+    } catch (const Error& e) {
+      if (e.status() == Status::OutOfDeviceMemory || e.status() == Status::Aborted) throw;
+      if (callbacks.warning)
+        callbacks.warning(std::string("TetGen's constrained Delaunay tetrahedralization failed (") + e.what() +
+                          "); retrying with the input surface kept unsplit (-Y): the result may not be "
+                          "constrained Delaunay everywhere");
+      outcome = run_tetgen_process("pcYnO0JQ", in, out, limit, callbacks.abort);
+    }
+    if (outcome.kind == TetGenOutcome::Done) break;
+    const std::string what =
+        outcome.kind == TetGenOutcome::TimedOut
+            ? "TetGen did not finish its tetrahedralization within " + std::to_string(static_cast<int>(limit)) + " s"
+            : outcome.signal == SIGABRT ? std::string("TetGen stopped on one of its internal assertions (printed on the standard error)")
+                                        : "TetGen's process ended on signal " + std::to_string(outcome.signal);
+    if (attempt + 1 == kOrders) throw TetGenAborted(what + ", with the points in " + std::to_string(kOrders) + " orders");
+    if (callbacks.warning) callbacks.warning(what + "; trying again with the points in another order");
   }
+  if (!std::is_sorted(order.begin(), order.end())) restore_order(order, out);
   stamp("TetGen");
   if (callbacks.abort && callbacks.abort()) throw Error(Status::Aborted, "aborted after the initial CDT");
   const HostTetMesh full = convert(plc, out);
@@ -574,7 +551,10 @@ m3d::HostTetMesh delaunay_tetrahedralization(const std::vector<double>& xyz) {
   in.numberofpoints = np;
   in.pointlist = new REAL[3 * static_cast<std::size_t>(np)];
   std::copy(xyz.begin(), xyz.end(), in.pointlist);
-  run_tetgen("nJQ", in, out);  // plain Delaunay: n (neighbours), J (keep numbering), Q (quiet)
+  // Plain Delaunay: n (neighbours), J (keep numbering), Q (quiet). No constraints, so none
+  // of the facet recovery that can fail: no time limit.
+  if (run_tetgen_process("nJQ", in, out, 1e9, {}).kind != TetGenOutcome::Done)
+    internal("TetGen's Delaunay tetrahedralization ended without a result");
   if (out.numberofcorners != 4 || !out.neighborlist || out.numberofpoints != np)
     internal("TetGen's Delaunay tetrahedralization returned an unexpected mesh");
   HostTetMesh m;

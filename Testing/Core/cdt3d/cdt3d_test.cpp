@@ -29,6 +29,7 @@ using cdt3d::initial_cdt;
 using cdt3d::interior_seeds;
 using cdt3d::Plc;
 using cdt3d::CheckOptions;
+using cdt3d::TetGenAborted;
 using test::add_box;
 using test::cube_with_rough_top;
 using test::polygon_prism;
@@ -425,6 +426,62 @@ TEST(InitialCdt, NestedCubesLeaveTheCavityEmpty) {
   const m3d::HostTetMesh m = checked_cdt(check_surface(s));
   EXPECT_NEAR(mesh_volume(m), 0.875, 1e-14);
   EXPECT_EQ(m.subfaces(), 24);
+}
+
+// TetGen's points in another order (as when a run is retried after TetGen failed) give a
+// valid CDT in our numbering: input points and seeds where they were, every check passed.
+TEST(InitialCdt, AnotherPointOrderForTetGenKeepsOurNumbering) {
+  Surface s = test::icosphere(2);
+  add_box(s, {-0.2, -0.2, -0.2}, {0.2, 0.2, 0.2});
+  const Plc plc = check_surface(s);
+  const std::vector<double> seeds = {0.5, 0.1, 0.1, -0.1, 0.6, 0.2, 0.0, 0.0, 0.0};  // the last in the cavity
+  setenv("GDR_TETGEN_SHUFFLE", "1", 1);
+  const m3d::HostTetMesh m = checked_cdt(plc, true, seeds);
+  unsetenv("GDR_TETGEN_SHUFFLE");
+  const m3d::HostTetMesh plain = checked_cdt(plc, true, seeds);
+  EXPECT_EQ(m.tets(), plain.tets());
+  EXPECT_EQ(m.subfaces(), plain.subfaces());
+  ASSERT_EQ(m.points(), plain.points());
+  const int n = static_cast<int>(plc.points.size());
+  for (int v = 0; v < n + 2; ++v) {
+    for (int d = 0; d < 3; ++d) EXPECT_EQ(m.xyz[3 * v + d], plain.xyz[3 * v + d]) << "point " << v;
+    EXPECT_EQ(m.ptype[v], v < n ? m3d::kInputPoint : m3d::kFreePoint);
+  }
+}
+
+// TetGen runs in a child process under a time limit (its facet recovery loops forever on
+// some inputs): past it, the run is tried in two more point orders, then ends with an error
+// that says so; the warnings say what happened.
+TEST(InitialCdt, TetGenPastItsTimeLimitEndsWithAnError) {
+  const Plc plc = check_surface(unit_cube());
+  std::vector<std::string> warnings;
+  Callbacks cb;
+  cb.warning = [&](const std::string& w) { warnings.push_back(w); };
+  setenv("GDR_TETGEN_SECONDS", "0", 1);
+  try {
+    initial_cdt(plc, cb);
+    ADD_FAILURE() << "no error past the time limit";
+  } catch (const TetGenAborted& e) {
+    EXPECT_TRUE(has(e.what(), "did not finish its tetrahedralization within 0 s")) << e.what();
+    EXPECT_TRUE(has(e.what(), "in 3 orders")) << e.what();
+  }
+  unsetenv("GDR_TETGEN_SECONDS");
+  ASSERT_EQ(warnings.size(), 2u);
+  EXPECT_TRUE(has(warnings[0], "trying again with the points in another order")) << warnings[0];
+  EXPECT_EQ(checked_cdt(plc).tets(), initial_cdt(plc).tets());  // and the next run is fine
+}
+
+// The caller's abort hook ends TetGen's run (its child process is killed).
+TEST(InitialCdt, AbortDuringTetGen) {
+  const Plc plc = check_surface(test::icosphere(4));
+  Callbacks cb;
+  cb.abort = [] { return true; };
+  try {
+    initial_cdt(plc, cb);
+    ADD_FAILURE() << "not aborted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.status(), Status::Aborted) << e.what();
+  }
 }
 
 // Interior seeds join the CDT as free points where they lie in the domain; those in the
