@@ -576,6 +576,7 @@ void vtkGDRConversion::AddStats(const gdr::RestrictedDelaunayStats& stats, vtkFi
   AddValue<vtkIdTypeArray>(fd, "FacetsLeftOut", static_cast<vtkIdType>(stats.facets_left_out));
   AddValue<vtkIdTypeArray>(fd, "ManifoldSplits", static_cast<vtkIdType>(stats.manifold_splits));
   AddValue<vtkIdTypeArray>(fd, "NonManifoldFacets", static_cast<vtkIdType>(stats.non_manifold_facets));
+  AddValue<vtkIdTypeArray>(fd, "PinchRelabelled", static_cast<vtkIdType>(stats.pinch_relabelled));
   AddValue<vtkDoubleArray>(fd, "FacetAngle", stats.facet_angle);
   AddValue<vtkDoubleArray>(fd, "FacetSize", stats.facet_size);
   AddValue<vtkDoubleArray>(fd, "FacetDistance", stats.facet_distance);

@@ -27,7 +27,7 @@
  * vtkGPUQualityTetMesh. Field data, also when the tetrahedra are empty: the run's
  * statistics (Backend, DeviceName, Iterations, SteinerPoints, ClosedInput, VolumeMeshed,
  * FeatureEdges, Corners, FeaturePoints, BadFacets, BadTetrahedra, ManifoldSplits,
- * NonManifoldFacets, Stalled,
+ * NonManifoldFacets, PinchRelabelled, Stalled,
  * SteinerCapReached, the criteria in effect with automatic sizes resolved as FacetAngle,
  * FacetSize, FacetDistance, CellRadiusEdgeRatio, CellSize, FeatureAngle, SliversBefore and
  * SliversAfter (SliverAngle), the qualities reached, Area, Volume, the times and the per-phase times as PhaseNames / PhaseSeconds).
@@ -143,9 +143,10 @@ public:
    * Refine where the surface is not a 2-manifold (default on), as CGAL Mesh_3's manifold():
    * once the criteria are met, the triangles at edges and vertices where the surface pinches
    * (a part thinner than the triangles) are refined until it is a manifold, down to
-   * triangles of D/1000 or an eighth of FacetSize; the field data NonManifoldFacets counts
-   * what is left there (with a warning), ManifoldSplits the triangles refined. Off: CGAL's
-   * non_manifold().
+   * triangles of D/1000 or an eighth of FacetSize; pinches left (rough input, as a scan's
+   * noise) are then undone by moving tetrahedra with all corners on the surface to the other
+   * side (PinchRelabelled counts them). The field data NonManifoldFacets counts what is left
+   * (with a warning), ManifoldSplits the triangles refined. Off: CGAL's non_manifold().
    */
   vtkSetMacro(Manifold, vtkTypeBool);
   vtkGetMacro(Manifold, vtkTypeBool);

@@ -76,7 +76,9 @@ Criteria (CGAL Mesh_3's names; sizes default to fractions of the bounding box di
                            triangles at edges and vertices where the surface pinches (a
                            part thinner than the triangles) are refined until it is a
                            manifold, down to triangles of D/1000 or 1/8 of the facet size;
-                           what is left is counted and warned about
+                           pinches left there (rough input: a scan's noise) are undone by
+                           moving tetrahedra with all corners on the surface to the other
+                           side; what is left is counted and warned about
   --max-steiner N          stop cleanly after inserting N points (default: no cap where
                            refinement terminates; an automatic cap below --cell-radius-edge 2)
 Algorithm:
@@ -302,8 +304,12 @@ void print_summary(const ArgsRdt& a, const RestrictedDelaunayResult& r, const Re
                                    : std::string())});
   if (s.steiner_cap_reached) info.row({"", "stopped at the cap of " + with_commas(s.steiner_cap)});
   if (s.stalled) info.row({"", "stalled: bad elements remain that no point could fix"});
-  if (s.manifold_splits > 0 || s.non_manifold_facets > 0)
-    info.row({"manifold", with_commas(s.manifold_splits) + " triangles refined where the surface pinched; " +
+  if (s.manifold_splits > 0 || s.non_manifold_facets > 0 || s.pinch_relabelled > 0)
+    info.row({"manifold", with_commas(s.manifold_splits) + " triangles refined where the surface pinched" +
+                              (s.pinch_relabelled > 0 ? ", " + with_commas(s.pinch_relabelled) +
+                                                            " tetrahedra changed side at pinches left"
+                                                      : std::string()) +
+                              "; " +
                               (s.non_manifold_facets > 0 ? with_commas(s.non_manifold_facets) + " still at non-manifold places"
                                                          : std::string("now a manifold"))});
   info.row({"backend", backend_line(s.backend_used, s.device_name)});
@@ -407,6 +413,7 @@ void write_stats_json(const ArgsRdt& a, const RestrictedDelaunayResult& r, const
   j.field("facets_left_out", s.facets_left_out);
   j.field("manifold_splits", s.manifold_splits);
   j.field("non_manifold_facets", s.non_manifold_facets);
+  j.field("pinch_relabelled", s.pinch_relabelled);
   j.field("features_off_surface", s.features_off_surface);
   j.field("manifold_min_size", s.manifold_min_size);
   j.field("min_facet_angle_deg", s.min_facet_angle_deg);

@@ -85,6 +85,7 @@ struct RestrictedDelaunayStats {
   long long facets_left_out = 0;
   long long manifold_splits = 0;           // facets refined by the manifold criterion
   long long non_manifold_facets = 0;       // surface facets at a non-manifold edge or vertex, at the end
+  long long pinch_relabelled = 0;          // tetrahedra that changed side to undo pinches (rdt3d/pinches.h)
   double manifold_min_size = 0;            // the manifold criterion refines facets down to this
   long long steiner_cap = -1;
   bool steiner_cap_reached = false;

@@ -27,6 +27,7 @@
 #include "qm3d/engine_dispatch.h"
 #include "rdt3d/engine_dispatch.h"
 #include "rdt3d/features.h"
+#include "rdt3d/pinches.h"
 
 namespace gdr {
 namespace {
@@ -425,13 +426,6 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
   if (st.backend_used == Backend::Gpu) st.peak_device_bytes = er.peak_bytes;
   if (er.cap_reached && cb.warning)
     cb.warning("refinement stopped at the Steiner point cap (" + std::to_string(st.steiner_cap) + ")");
-  if (st.non_manifold_facets > 0 && cb.warning)
-    cb.warning("the surface is not a manifold at " + std::to_string(st.non_manifold_facets) + " facet(s)" +
-               (options.manifold ? ": the input is thinner there than facets of " +
-                                       std::to_string(scale.length(st.manifold_min_size, -1)) +
-                                       " (the manifold criterion's smallest) can resolve, or they are next to "
-                                       "features at small angles"
-                                 : std::string(" (the manifold criterion is off)")));
   if (st.features_off_surface > 0 && cb.warning)
     cb.warning(std::to_string(st.features_off_surface) +
                " feature subsegment(s) are not edges of the surface: it cuts across the sharp edges there "
@@ -458,6 +452,14 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
     out.ptype[v] = v >= feature_vertices ? m3d::kFacetPoint : (corner[v] ? m3d::kInputPoint : m3d::kSegmentPoint);
   st.triangulation_points = m.npts;
   st.triangulation_tets = m.ntet;
+  // A closed input's surface is the boundary of the tetrahedra inside: the pinches that
+  // refinement leaves where the input is rough at the mesh's scale are undone (pinches.h).
+  rdt3d::PinchRepair pinches;
+  if (c.inside && options.manifold) {
+    pinches = rdt3d::undo_pinches(out.xyz.data(), out.ptype.data(), m.npts, m.tv, m.tn, out.tflag.data(), m.ntet,
+                                  rdt3d::kInterior);
+    st.pinch_relabelled = pinches.relabelled;
+  }
 
   std::vector<int> new_id(m.npts, -1);
   TetMesh& tm = result.mesh;
@@ -480,7 +482,10 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
   // thingi10k_65778, where they come from circumcentres exactly on the input's planes, it
   // made refinement stall in 6 runs of 10 (0 of 10 without), so they are only left out.
   auto emitted = [&](int t, int f) {
-    return (out.tflag[t] & (rdt3d::kRestricted0 << f)) && rdt3d::owns_face(m, t, f) && !rdt3d::same_side(m, c, t, f);
+    if (!rdt3d::owns_face(m, t, f)) return false;
+    if (!c.inside) return (out.tflag[t] & (rdt3d::kRestricted0 << f)) != 0;
+    const int nb = m.tn[4 * t + f];
+    return ((out.tflag[t] & rdt3d::kInterior) != 0) != (nb >= 0 && (out.tflag[nb >> 2] & rdt3d::kInterior) != 0);
   };
   long long unbounding = 0;
 #pragma omp parallel for reduction(+ : unbounding)
@@ -512,6 +517,28 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
       double x[3];
       int tri = -1;
       fc.ok = rdt3d::surface_centre(ms, tree, c, t, f, x, &tri);
+      bool off_surface = false;
+      if (!fc.ok && c.inside) {
+        // A face between inside and outside whose dual misses the surface (one that changed
+        // side at a pinch): the surface point on its normal line through its circumcentre
+        // (within four circumradii), else the circumcentre itself, counted bad.
+        const double* p0 = m3d::pt(ms, m.tv[4 * t + m3d::face_corner(f, 0)]);
+        const double* p1 = m3d::pt(ms, m.tv[4 * t + m3d::face_corner(f, 1)]);
+        const double* p2 = m3d::pt(ms, m.tv[4 * t + m3d::face_corner(f, 2)]);
+        double cc[3], n[3];
+        m3d::tri_circumcenter(p0, p1, p2, cc);
+        const double e1[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]},
+                     e2[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
+        m3d::cross3(e1, e2, n);
+        const double scale_n = 4 * std::sqrt(m3d::dist2(cc, p0) / std::max(m3d::dot3(n, n), 1e-300));
+        const double lo[3] = {cc[0] - scale_n * n[0], cc[1] - scale_n * n[1], cc[2] - scale_n * n[2]};
+        const double hi[3] = {cc[0] + scale_n * n[0], cc[1] + scale_n * n[1], cc[2] + scale_n * n[2]};
+        if (!rdt3d::surface_point_on_segment(tree, lo, hi, p0, x, &tri)) {
+          for (int k = 0; k < 3; ++k) x[k] = cc[k];
+          off_surface = true;
+        }
+        fc.ok = true;
+      }
       if (!fc.ok) continue;
       int* v = fc.v;
       for (int q = 0; q < 3; ++q) v[q] = m.tv[4 * t + m3d::face_corner(f, q)];
@@ -560,7 +587,7 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
       double nx[3];
       m3d::cross3(ux, vx, nx);
       fc.area = 0.5 * std::sqrt(m3d::dot3(nx, nx));
-      fc.bad = rdt3d::facet_is_bad(ms, c, t, f, x) ? 1 : 0;
+      fc.bad = off_surface || rdt3d::facet_is_bad(ms, c, t, f, x) ? 1 : 0;
     }
   }
   result.facet_angle_histogram.assign(61, 0);
@@ -579,6 +606,20 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
     area += fc.area;
   }
   st.output_triangles = static_cast<long long>(tm.subfaces.size());
+  if (c.inside && options.manifold) {  // what the relabelling left: facets at its places
+    std::vector<char> left(m.npts, 0);
+    for (const int v : pinches.left_at) left[v] = 1;
+    st.non_manifold_facets = 0;
+    for (const Facet& fc : facets)
+      st.non_manifold_facets += fc.ok && (left[fc.v[0]] || left[fc.v[1]] || left[fc.v[2]]);
+  }
+  if (st.non_manifold_facets > 0 && cb.warning)
+    cb.warning("the surface is not a manifold at " + std::to_string(st.non_manifold_facets) + " facet(s)" +
+               (options.manifold ? ": the input is thinner there than facets of " +
+                                       std::to_string(scale.length(st.manifold_min_size, -1)) +
+                                       " (the manifold criterion's smallest) can resolve, or they are next to "
+                                       "features at small angles"
+                                 : std::string(" (the manifold criterion is off)")));
   for (unsigned char b : result.facet_is_bad) st.bad_facets += b;
   st.min_facet_angle_deg = tm.subfaces.empty() ? 0 : min_angle;
   st.max_facet_size = max_size;
