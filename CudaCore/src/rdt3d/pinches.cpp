@@ -133,7 +133,7 @@ struct Pinches {
 }  // namespace
 
 PinchRepair undo_pinches(const double* xyz, const std::uint8_t* ptype, int npts, const int* tv, const int* tn,
-                         int* flag, int ntet, int inside_bit, int max_rounds) {
+                         int* flag, int ntet, int inside_bit, int fixed_bits, int max_rounds) {
   Pinches p{xyz, tv, tn, flag, inside_bit, {}, {}, {}, {}};
   p.first.assign(npts + 1, 0);
   for (int k = 0; k < 4 * ntet; ++k) ++p.first[tv[k] + 1];
@@ -145,9 +145,11 @@ PinchRepair undo_pinches(const double* xyz, const std::uint8_t* ptype, int npts,
   }
   p.movable.assign(ntet, 1);
   p.frozen.assign(ntet, 0);
-  for (int t = 0; t < ntet; ++t)
+  for (int t = 0; t < ntet; ++t) {
+    if (flag[t] & fixed_bits) p.movable[t] = 0;
     for (int k = 0; k < 4; ++k)
       if (tn[4 * t + k] < 0 || ptype[tv[4 * t + k]] == m3d::kFreePoint) p.movable[t] = 0;
+  }
 
   // Surface vertices: a tetrahedron inside and one outside (the hull counts as outside).
   auto on_surface = [&](int v) {
@@ -191,12 +193,14 @@ PinchRepair undo_pinches(const double* xyz, const std::uint8_t* ptype, int npts,
   };
 
   PinchRepair r;
+  r.moved.assign(ntet, 0);
   std::vector<int> vertices(npts);
   std::iota(vertices.begin(), vertices.end(), 0);
   for (r.rounds = 0; r.rounds < max_rounds; ++r.rounds) {
     moved.clear();
     const long long left = look(vertices, true, nullptr);
     r.relabelled += static_cast<long long>(moved.size());
+    for (const int t : moved) r.moved[t] = 1;
     if (moved.empty() || left == 0) break;
     // Next round: the vertices of what moved and their neighbours' (whose edges and stars changed).
     vertices.clear();

@@ -454,10 +454,15 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
   st.triangulation_tets = m.ntet;
   // A closed input's surface is the boundary of the tetrahedra inside: the pinches that
   // refinement leaves where the input is rough at the mesh's scale are undone (pinches.h).
+  // Not with sharp features, whose pinches come from the features (README, "Restricted
+  // Delaunay: thin parts and features"): there it made thingi10k_288351 worse (83 -> 108-328
+  // non-manifold edges at --feature-angle 30).
   rdt3d::PinchRepair pinches;
-  if (c.inside && options.manifold) {
+  const bool has_features =
+      std::any_of(out.tflag.begin(), out.tflag.end(), [](int f) { return (f & m3d::kSegBits) != 0; });
+  if (c.inside && options.manifold && !has_features) {
     pinches = rdt3d::undo_pinches(out.xyz.data(), out.ptype.data(), m.npts, m.tv, m.tn, out.tflag.data(), m.ntet,
-                                  rdt3d::kInterior);
+                                  rdt3d::kInterior, m3d::kSegBits);
     st.pinch_relabelled = pinches.relabelled;
   }
 
@@ -481,10 +486,12 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
   // out and counted. Refining such facets instead (as bad facets) was tried: on
   // thingi10k_65778, where they come from circumcentres exactly on the input's planes, it
   // made refinement stall in 6 runs of 10 (0 of 10 without), so they are only left out.
+  // Faces of tetrahedra that changed side at a pinch bound the volume whether restricted or not.
   auto emitted = [&](int t, int f) {
     if (!rdt3d::owns_face(m, t, f)) return false;
-    if (!c.inside) return (out.tflag[t] & (rdt3d::kRestricted0 << f)) != 0;
     const int nb = m.tn[4 * t + f];
+    const bool moved = !pinches.moved.empty() && (pinches.moved[t] || (nb >= 0 && pinches.moved[nb >> 2]));
+    if (!moved) return (out.tflag[t] & (rdt3d::kRestricted0 << f)) && !rdt3d::same_side(m, c, t, f);
     return ((out.tflag[t] & rdt3d::kInterior) != 0) != (nb >= 0 && (out.tflag[nb >> 2] & rdt3d::kInterior) != 0);
   };
   long long unbounding = 0;
@@ -606,7 +613,7 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
     area += fc.area;
   }
   st.output_triangles = static_cast<long long>(tm.subfaces.size());
-  if (c.inside && options.manifold) {  // what the relabelling left: facets at its places
+  if (c.inside && options.manifold && !has_features) {  // what the relabelling left: facets at its places
     std::vector<char> left(m.npts, 0);
     for (const int v : pinches.left_at) left[v] = 1;
     st.non_manifold_facets = 0;
