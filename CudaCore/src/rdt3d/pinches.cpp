@@ -35,13 +35,30 @@ struct Pinches {
                      u[2] * (v[0] * w[1] - v[1] * w[0])) / 6;
   }
 
-  // The tetrahedra around vertex a (b < 0) or edge ab.
+  // The tetrahedra around vertex a (b < 0) or edge ab, in increasing order (star is sorted).
   void place(int a, int b, std::vector<int>& ts) const {
     ts.clear();
     for (int k = first[a]; k < first[a + 1]; ++k) {
       const int t = star[k];
       if (b < 0 || std::find(tv + 4 * t, tv + 4 * t + 4, b) != tv + 4 * t + 4) ts.push_back(t);
     }
+  }
+
+  // Surface facets at edge ab (faces through it between the two sides; the hull is outside).
+  int facets_at_edge(int a, int b) const {
+    int twice = 0;
+    for (int k = first[a]; k < first[a + 1]; ++k) {
+      const int t = star[k];
+      if (std::find(tv + 4 * t, tv + 4 * t + 4, b) == tv + 4 * t + 4) continue;
+      for (int f = 0; f < 4; ++f) {
+        const int opposite = tv[4 * t + f];
+        if (opposite == a || opposite == b) continue;
+        const int nb = tn[4 * t + f];
+        const bool other = nb >= 0 && in(nb >> 2);
+        if (in(t) != other) twice += nb >= 0 ? 1 : 2;  // seen from both sides, or once on the hull
+      }
+    }
+    return twice / 2;
   }
 
   // Groups of the place's tetrahedra on each side, joined across faces through a (and b):
@@ -54,6 +71,7 @@ struct Pinches {
       while (group[i] != i) i = group[i] = group[group[i]];
       return i;
     };
+    // ts is sorted (place): the neighbour across a face through a (and b) is in it.
     for (int i = 0; i < n; ++i) {
       const int t = ts[i];
       for (int f = 0; f < 4; ++f) {
@@ -61,8 +79,8 @@ struct Pinches {
         if (opposite == a || opposite == b || tn[4 * t + f] < 0) continue;
         const int u = tn[4 * t + f] >> 2;
         if (in(u) != in(t)) continue;
-        const int j = static_cast<int>(std::find(ts.begin(), ts.end(), u) - ts.begin());
-        if (j < n) group[root(i)] = root(j);
+        const auto it = std::lower_bound(ts.begin(), ts.end(), u);
+        if (it != ts.end() && *it == u) group[root(i)] = root(static_cast<int>(it - ts.begin()));
       }
     }
     n_in = n_out = 0;
@@ -178,7 +196,8 @@ PinchRepair undo_pinches(const double* xyz, const std::uint8_t* ptype, int npts,
       std::sort(others.begin(), others.end());
       others.erase(std::unique(others.begin(), others.end()), others.end());
       for (const int b : others) {
-        if (!on_surface(b)) continue;
+        const int facets = p.facets_at_edge(a, b);
+        if (facets == 2 || facets == 0) continue;  // manifold there
         if (mend) p.mend(a, b, ts, group, moved);
         if (!p.manifold(a, b, ts, group)) {
           ++left;
@@ -192,10 +211,24 @@ PinchRepair undo_pinches(const double* xyz, const std::uint8_t* ptype, int npts,
     return left;
   };
 
+  // The corners of the faces between the two sides: where pinches can be.
+  auto surface_vertices = [&] {
+    std::vector<char> on(npts, 0);
+    for (int t = 0; t < ntet; ++t)
+      for (int f = 0; f < 4; ++f) {
+        const int nb = tn[4 * t + f];
+        if (p.in(t) == (nb >= 0 && p.in(nb >> 2))) continue;
+        for (int k = 0; k < 4; ++k)
+          if (k != f) on[tv[4 * t + k]] = 1;
+      }
+    std::vector<int> list;
+    for (int v = 0; v < npts; ++v)
+      if (on[v]) list.push_back(v);
+    return list;
+  };
   PinchRepair r;
   r.moved.assign(ntet, 0);
-  std::vector<int> vertices(npts);
-  std::iota(vertices.begin(), vertices.end(), 0);
+  std::vector<int> vertices = surface_vertices();
   for (r.rounds = 0; r.rounds < max_rounds; ++r.rounds) {
     moved.clear();
     const long long left = look(vertices, true, nullptr);
@@ -213,9 +246,7 @@ PinchRepair undo_pinches(const double* xyz, const std::uint8_t* ptype, int npts,
     std::sort(vertices.begin(), vertices.end());
     vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
   }
-  std::vector<int> all(npts);
-  std::iota(all.begin(), all.end(), 0);
-  r.places_left = look(all, false, &r.left_at);
+  r.places_left = look(surface_vertices(), false, &r.left_at);
   std::sort(r.left_at.begin(), r.left_at.end());
   r.left_at.erase(std::unique(r.left_at.begin(), r.left_at.end()), r.left_at.end());
   return r;

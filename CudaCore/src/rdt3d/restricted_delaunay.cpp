@@ -458,12 +458,15 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
   // Delaunay: thin parts and features"): there it made thingi10k_288351 worse (83 -> 108-328
   // non-manifold edges at --feature-angle 30).
   rdt3d::PinchRepair pinches;
+  bool pinch_pass = false;
   const bool has_features =
       std::any_of(out.tflag.begin(), out.tflag.end(), [](int f) { return (f & m3d::kSegBits) != 0; });
-  if (c.inside && options.manifold && !has_features) {
+  // Only where the engine's count (the same surface) found pinches: nothing to pay elsewhere.
+  if (c.inside && options.manifold && !has_features && st.non_manifold_facets > 0) {
     pinches = rdt3d::undo_pinches(out.xyz.data(), out.ptype.data(), m.npts, m.tv, m.tn, out.tflag.data(), m.ntet,
                                   rdt3d::kInterior, m3d::kSegBits);
     st.pinch_relabelled = pinches.relabelled;
+    pinch_pass = true;
   }
 
   std::vector<int> new_id(m.npts, -1);
@@ -613,7 +616,7 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
     area += fc.area;
   }
   st.output_triangles = static_cast<long long>(tm.subfaces.size());
-  if (c.inside && options.manifold && !has_features) {  // what the relabelling left: facets at its places
+  if (pinch_pass) {  // what the relabelling left: facets at its places
     std::vector<char> left(m.npts, 0);
     for (const int v : pinches.left_at) left[v] = 1;
     st.non_manifold_facets = 0;
