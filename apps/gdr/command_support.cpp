@@ -35,6 +35,9 @@ std::string lower_extension(const std::string& path) {
 
 std::string backend_line(Backend used, const std::string& device_name) {
   if (used == Backend::Gpu) return "gpu (" + (device_name.empty() ? std::string("CUDA device") : device_name) + ")";
+  // The run's own count ("CPU (N OpenMP threads)"): small 3D meshes use fewer threads.
+  const std::string prefix = "CPU (";
+  if (device_name.compare(0, prefix.size(), prefix) == 0) return "cpu (" + device_name.substr(prefix.size());
   return "cpu (OpenMP, " + std::to_string(cpu_threads()) + " threads)";
 }
 

@@ -38,5 +38,19 @@ void mark_gpu_warm();
 void prewarm_gpu(Backend backend, std::size_t work_size, std::size_t auto_min_work);
 
 int cpu_threads();  // OpenMP threads used by the CPU backend
+std::string cpu_device_name(int threads);  // "CPU (N OpenMP threads)", a run's device_name
+
+// For its lifetime, at most `n` OpenMP threads in the parallel loops this thread starts
+// (small meshes: iterations too short to share among many threads).
+class CpuThreadLimit {
+ public:
+  explicit CpuThreadLimit(int n);
+  ~CpuThreadLimit();
+  CpuThreadLimit(const CpuThreadLimit&) = delete;
+  CpuThreadLimit& operator=(const CpuThreadLimit&) = delete;
+
+ private:
+  int before_;
+};
 
 }  // namespace gdr

@@ -84,6 +84,15 @@ Backend resolve_backend(Backend requested, std::size_t work_size, std::size_t gp
 
 int cpu_threads() { return omp_get_max_threads(); }
 
+std::string cpu_device_name(int threads) {
+  return "CPU (" + std::to_string(threads) + (threads == 1 ? " OpenMP thread)" : " OpenMP threads)");
+}
+
+CpuThreadLimit::CpuThreadLimit(int n) : before_(omp_get_max_threads()) {
+  omp_set_num_threads(std::max(1, std::min(n, before_)));
+}
+CpuThreadLimit::~CpuThreadLimit() { omp_set_num_threads(before_); }
+
 namespace {
 std::atomic<bool> g_gpu_warm{false};
 }

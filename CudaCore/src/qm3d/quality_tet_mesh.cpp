@@ -234,8 +234,12 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
 
   const std::size_t estimated = estimate_tets(mesh, plc.volume, smallest_volume_bound(options, input));
   st.backend_used = resolve_backend(options.backend, estimated, gpu_min_tets(options));
+  // Small meshes on the CPU: one thread per 2,500 expected tetrahedra. On the H200 machine's
+  // 16 threads, 3-5k tetrahedra refined in 0.11-0.31 s, against 0.05-0.17 s on one or two
+  // (and 30k tetrahedra in 0.10 s against 0.14 s on four): the iterations are too short.
+  const CpuThreadLimit threads(static_cast<int>(std::min<std::size_t>(estimated / 2500 + 1, 1 << 20)));
   if (st.backend_used == Backend::Gpu) st.device_name = device_info().name;
-  else st.device_name = "CPU (" + std::to_string(cpu_threads()) + " OpenMP threads)";
+  else st.device_name = cpu_device_name(cpu_threads());
 
   qm3d::EngineParams params;
   params.criteria = make_criteria(options, input);

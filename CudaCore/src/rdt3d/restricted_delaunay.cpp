@@ -388,7 +388,7 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
   }
   st.backend_used = resolve_backend(requested, estimated, 20000 * std::size_t(std::max(1, cpu_threads())));
   if (st.backend_used == Backend::Gpu) st.device_name = device_info().name;
-  else st.device_name = "CPU (" + std::to_string(cpu_threads()) + " OpenMP threads)";
+  else st.device_name = cpu_device_name(cpu_threads());
 
   Callbacks engine_cb = cb;
   if (cb.progress)

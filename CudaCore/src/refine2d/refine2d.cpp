@@ -599,7 +599,7 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
     prepared.reset();
   }
   if (st.backend_used == Backend::Gpu) st.device_name = device_info().name;
-  else st.device_name = "CPU (" + std::to_string(engine_threads) + " OpenMP threads)";
+  else st.device_name = cpu_device_name(engine_threads);
 
   // Refinement (or, with refine off, only the engine's upload and download, which list the
   // subsegments and bad triangles the same way).
