@@ -498,6 +498,12 @@ m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks, const s
   std::vector<int> order(np);
   std::iota(order.begin(), order.end(), 0);
   const bool shuffle_first = std::getenv("GDR_TETGEN_SHUFFLE") != nullptr;  // tests: restore_order
+  // Polled every 50 ms while TetGen runs: the progress hook too, where ParaView's GUI takes a
+  // press on its abort button.
+  const auto waiting = [&callbacks]() {
+    if (callbacks.progress) callbacks.progress(0.0, "constrained Delaunay tetrahedralization (TetGen)");
+    return callbacks.abort && callbacks.abort();
+  };
   tetgenio out;
   constexpr int kOrders = 3;
   for (int attempt = 0;; ++attempt) {
@@ -507,14 +513,14 @@ m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks, const s
     if (attempt == 0) stamp("fill TetGen input");
     TetGenOutcome outcome;
     try {
-      outcome = run_tetgen_process("pcnO0JQ", in, out, limit, callbacks.abort);
+      outcome = run_tetgen_process("pcnO0JQ", in, out, limit, waiting);
     } catch (const Error& e) {
       if (e.status() == Status::OutOfDeviceMemory || e.status() == Status::Aborted) throw;
       if (callbacks.warning)
         callbacks.warning(std::string("TetGen's constrained Delaunay tetrahedralization failed (") + e.what() +
                           "); retrying with the input surface kept unsplit (-Y): the result may not be "
                           "constrained Delaunay everywhere");
-      outcome = run_tetgen_process("pcYnO0JQ", in, out, limit, callbacks.abort);
+      outcome = run_tetgen_process("pcYnO0JQ", in, out, limit, waiting);
     }
     if (outcome.kind == TetGenOutcome::Done) break;
     const std::string what =

@@ -535,8 +535,10 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
         const double* p0 = m3d::pt(ms, m.tv[4 * t + m3d::face_corner(f, 0)]);
         const double* p1 = m3d::pt(ms, m.tv[4 * t + m3d::face_corner(f, 1)]);
         const double* p2 = m3d::pt(ms, m.tv[4 * t + m3d::face_corner(f, 2)]);
-        double cc[3], n[3];
-        m3d::tri_circumcenter(p0, p1, p2, cc);
+        double cc[3] = {(p0[0] + p1[0] + p2[0]) / 3, (p0[1] + p1[1] + p2[1]) / 3, (p0[2] + p1[2] + p2[2]) / 3}, n[3];
+        double o[3];
+        if (m3d::tri_circumcenter(p0, p1, p2, o))  // else the centroid (a degenerate face)
+          for (int k = 0; k < 3; ++k) cc[k] = o[k];
         const double e1[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]},
                      e2[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
         m3d::cross3(e1, e2, n);
