@@ -373,9 +373,16 @@ struct ClassifyFresh {
       int tri;
       const bool from_known = c.inside && known < 0 && nb >= 0 && !(m.tflag[u] & m3d::kFresh);
       bool dual = false;
-      const bool r = centred && surface_centre_from(m, s, c, t, f, o, x, &tri, from_known ? &contacts : nullptr,
-                                                    from_known ? &dual : nullptr);
+      SegmentContacts open_contacts;  // an open input's: the crossings of this face's dual
+      bool r = centred && surface_centre_from(m, s, c, t, f, o, x, &tri,
+                                              from_known ? &contacts : (c.inside ? nullptr : &open_contacts),
+                                              from_known ? &dual : nullptr);
       if (dual) known = u;
+      // Open input: a dual that crosses the surface an even number of times joins two points on
+      // one side of it (near a crease of a rough scan, or a fold), and its face separates
+      // nothing: not restricted, as same_side leaves such faces out of a closed input's surface.
+      // On a scan-like open surface they made a third of the surface non-manifold.
+      if (r && !c.inside && !open_contacts.touch && (open_contacts.crossings & 1) == 0) r = false;
       const bool bad = r && facet_is_bad(m, c, t, f, x);
       set_bit(t, kRestricted0 << f, r);
       set_bit(t, kBadFacet0 << f, bad);
