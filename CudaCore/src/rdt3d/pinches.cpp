@@ -96,7 +96,7 @@ struct Pinches {
     return n_in <= 1 && n_out <= 1;
   }
 
-  // Makes the place manifold; returns the tetrahedra that changed side (appended to `moved`).
+  // Makes the place manifold; the tetrahedra that change side are appended to `moved`.
   void mend(int a, int b, std::vector<int>& ts, std::vector<int>& group, std::vector<int>& moved) {
     if (manifold(a, b, ts, group)) return;
     const int n = static_cast<int>(ts.size());
