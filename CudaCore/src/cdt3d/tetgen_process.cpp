@@ -140,15 +140,13 @@ struct Reader {
 TetGenOutcome run_tetgen_process(const std::string& switches, tetgenio& in, tetgenio& out,
                                  double seconds, const std::function<bool()>& cancel) {
   int fds[2];
-  if (::pipe(fds) != 0) {
-    const int code = tetrahedralize_code(switches, in, out);
-    if (code != 0) throw_tetgen_code(code);
-    return {};
-  }
-  const pid_t pid = ::fork();
-  if (pid < 0) {  // no process to spare: TetGen here, unguarded
-    ::close(fds[0]);
-    ::close(fds[1]);
+  const bool piped = ::pipe(fds) == 0;
+  const pid_t pid = piped ? ::fork() : -1;
+  if (pid < 0) {  // no pipe or process to spare: TetGen here, unguarded
+    if (piped) {
+      ::close(fds[0]);
+      ::close(fds[1]);
+    }
     const int code = tetrahedralize_code(switches, in, out);
     if (code != 0) throw_tetgen_code(code);
     return {};

@@ -459,10 +459,9 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
   // non-manifold edges at --feature-angle 30).
   rdt3d::PinchRepair pinches;
   bool pinch_pass = false;
-  const bool has_features =
-      std::any_of(out.tflag.begin(), out.tflag.end(), [](int f) { return (f & m3d::kSegBits) != 0; });
   // Only where the engine's count (the same surface) found pinches: nothing to pay elsewhere.
-  if (c.inside && options.manifold && !has_features && st.non_manifold_facets > 0) {
+  if (c.inside && options.manifold && st.non_manifold_facets > 0 &&
+      std::none_of(out.tflag.begin(), out.tflag.end(), [](int f) { return (f & m3d::kSegBits) != 0; })) {
     pinches = rdt3d::undo_pinches(out.xyz.data(), out.ptype.data(), m.npts, m.tv, m.tn, out.tflag.data(), m.ntet,
                                   rdt3d::kInterior, m3d::kSegBits);
     st.pinch_relabelled = pinches.relabelled;
