@@ -33,12 +33,14 @@ struct Strategies {
   bool graded = true;        // bad triangles wait for much smaller bad triangles nearby
   bool work_list = true;     // CPU: collect from the last list and the changed triangles
   bool cdt_assembly = true;  // the parallel CDT assembled where it ran (cdt_assembly.h), not on the host
+  bool one_at_a_time = true; // CPU on few threads: points inserted one at a time (Engine::one_at_a_time)
 };
 
 struct EngineParams {
   Criteria criteria;
   std::vector<double> region_area2;  // Criteria::region_area2 on the host (empty: none)
   long long max_steiner = -1;  // -1: unlimited
+  bool one_at_a_time = false;  // CPU on few threads: Engine::one_at_a_time instead of the parallel iteration
   int max_iterations = 100000;
   Strategies strategies;
 };
@@ -161,14 +163,20 @@ struct Engine {
       const std::size_t nl = collect();                 // line 3
       if (nl == 0) break;                               // line 9
       res.iterations = iter + 1;
-      compute_splitting_points(nl, iter);               // lines 5-6
-      const std::size_t ns = filter(nl);                // line 7 (S3)
-      grow_cavities(ns);                                // line 7 (S2, S5)
-      const long long won = verify_and_number(ns);
-      contention(ns, won);
+      std::size_t ns = 0;
+      long long won = 0;
+      if (params.one_at_a_time && !handed_over && iter < kOneAtATimeSweeps) {
+        won = one_at_a_time(nl, iter);                  // lines 4-8, a point at a time
+      } else {
+        compute_splitting_points(nl, iter);             // lines 5-6
+        ns = filter(nl);                                // line 7 (S3)
+        grow_cavities(ns);                              // line 7 (S2, S5)
+        won = verify_and_number(ns);
+        contention(ns, won);
+        if (won > 0) insert(ns, won);                   // line 8
+      }
       graded_now = won > 0;
       if (won > 0) {
-        insert(ns, won);                                // line 8
         idle = 0;
       } else if (++idle >= 3) {
         res.stalled = true;
@@ -586,6 +594,181 @@ struct Engine {
       compete_cap = std::max<std::size_t>(kMinCompete, 16 * static_cast<std::size_t>(won));
     else if (compete_cap != SIZE_MAX)
       compete_cap = compete_cap > SIZE_MAX / 4 ? SIZE_MAX : 4 * compete_cap;
+  }
+
+  // One point at a time (the CPU on few threads, issue 14). The parallel iteration computes
+  // a point for every bad element and grows a cavity for every candidate, but only the points
+  // whose cavities win go in: on one thread, the generated 1M-segment map's 508k Steiner
+  // points cost 4.9M splitting points and walks and 2.6M cavities over 81 iterations (16 s).
+  // Here the elements wait in one priority queue, in the parallel iteration's order
+  // (subsegments first, larger first; then triangles too big for the size bounds, larger
+  // first; then those bad by their shape, smallest first, which the graded order only
+  // approximates): the first gets its point, the point goes in at once (the same kernels,
+  // on one candidate and its own tuples), and the elements of its new triangles join the
+  // queue. A free point that encroaches a subsegment flags it, as in the parallel
+  // iteration; the subsegment is queued ahead of it and its triangle queued again, once.
+  // Returns the points inserted.
+  // A sweep ends when the queue is empty or the mesh has doubled (and grown by kSweepGrowth
+  // triangles): the cascade checks run between sweeps. After kOneAtATimeSweeps sweeps the
+  // parallel iteration takes over: ...
+  static constexpr int kOneAtATimeSweeps = 8, kSweepGrowth = 1 << 16;
+  bool handed_over = false;
+  struct Waiting {
+    u64 key;  // priority class and size, then first come first served
+    int e;    // element: triangle * 4 + slot
+    bool operator<(const Waiting& o) const { return key < o.key; }
+  };
+  u64 key(u64 prio) { return ((prio >> 32) << 32) | (0xffffffffu - queued++); }
+  std::vector<Waiting> queue;
+  unsigned queued = 0;
+  unsigned salt = 0;
+  void enqueue(u64 prio, int e) {
+    queue.push_back(Waiting{key(prio), e});
+    std::push_heap(queue.begin(), queue.end());
+  }
+  // The elements of triangle t (slots in `slots`), queued with their priorities.
+  void enqueue_elements(const MeshView& mv, int t, int slots) {
+    if (!collect_count(mv, crit, t)) return;
+    const int mask = collect_mask(mv.tflag[t]) & slots;
+    for (int k = 0; k < 4; ++k) {
+      if (!(mask & (1 << k))) continue;
+      const int e = 4 * t + k;
+      Candidate c;
+      ComputeSplittingPoints{mv, crit, &e, &c, salt, params.strategies.worst_first, u64(1) << 32, 0, false, 0,
+                             nullptr, {}}(0);
+      if (c.kind != -1) enqueue(c.prio, e);
+    }
+  }
+  std::vector<CavityTuple> seq_tuples;  // insert_one's scratch
+  std::vector<int> seq_base;
+  long long one_at_a_time(std::size_t nl, int iter) {
+    if constexpr (Ops::is_gpu) {
+      return 0;
+    } else {
+      salt = 0x9e3779b9u * static_cast<unsigned>(iter + 1);
+      // The listed elements' priorities without walks (max_steps 0), all threads.
+      cand_all.resize_discard(nl);
+      Ops::for_each(nl, ComputeSplittingPoints{dm.view(), crit, list.data(), cand_all.data(), salt,
+                                               params.strategies.worst_first, u64(1) << 32, 0, false, 0,
+                                               nullptr, {}});
+      queue.clear();
+      queued = 0;
+      const Candidate* ca = cand_all.data();
+      const int* lst = list.data();
+      for (std::size_t j = 0; j < nl; ++j)
+        if (ca[j].kind != -1)
+          queue.push_back(Waiting{key(ca[j].prio), lst[j]});
+      std::make_heap(queue.begin(), queue.end());
+      cand_all.release();
+      dm.mark.zero();  // each point claims its cavity from clean marks and clears them after
+      clock.template stop<Space>("split+locate");
+      long long won = 0, sized = 0;  // points inserted, those for triangles too big
+      const int grown = 2 * dm.ntri + kSweepGrowth;  // the sweep ends once the mesh is this large
+      int touched_ids[4];
+      int touched_count = 0;
+      const TouchLog mine{touched_ids, &touched_count, 4};
+      while (!queue.empty() && dm.ntri < grown) {
+        if ((won & 4095) == 4095) {
+          if (cb.abort && cb.abort()) throw Error(Status::Aborted, "refinement aborted by the caller");
+          if (cb.progress && (won & 262143) == 262143)
+            cb.progress(0.0, "iteration " + std::to_string(iter + 1) + ": " + std::to_string(won) +
+                                 " points inserted, " + std::to_string(queue.size()) + " bad elements waiting");
+        }
+        if (params.max_steiner >= 0 && res.inserted >= params.max_steiner) {
+          res.cap_reached = true;
+          break;
+        }
+        std::pop_heap(queue.begin(), queue.end());
+        const Waiting w = queue.back();
+        queue.pop_back();
+        const int t = w.e >> 2;
+        MeshView mv = dm.view();
+        // Gone, or no longer an element (a subsegment split from its other side): skip.
+        if (!(collect_count(mv, crit, t) && (collect_mask(mv.tflag[t]) & (1 << (w.e & 3))))) continue;
+        Candidate c;
+        touched_count = 0;
+        ComputeSplittingPoints{mv, crit, &w.e, &c, salt, params.strategies.worst_first, u64(1) << 32,
+                               params.criteria.step_limit, false, 0, nullptr, mine}(0);
+        const int old_ntri = dm.ntri;
+        const int in = c.kind < 0 ? 0 : insert_one(c, mine);
+        won += in;
+        if ((c.prio >> 62) == kClassTriangle) sized += in;
+        else if (won - sized > 8 * (static_cast<long long>(nl) + sized) + 1024) {
+          handed_over = true;  // a cascade: the parallel iteration's graded order takes over
+          break;
+        }
+        mv = dm.view();
+        for (int i = 0; i < std::min(touched_count, 4); ++i) {  // flagged subsegments first
+          touch_log().add(touched_ids[i]);
+          enqueue_elements(mv, touched_ids[i], 7);
+        }
+        for (int nt = old_ntri; nt < dm.ntri; ++nt) enqueue_elements(mv, nt, 15);
+      }
+      queue.clear();
+      clock.template stop<Space>("one at a time");
+      if (error.get(0)) throw Error(Status::InternalError, "gDP2d: broken cavity while linking new triangles");
+      if (params.strategies.compaction && 10 * dead > dm.ntri) {
+        detail::compact_triangles(dm);
+        dead = 0;
+        listed_below = 0;  // renumbered: the work list no longer names the triangles
+      }
+      clock.template stop<Space>("compact");
+      return won;
+    }
+  }
+
+  // Algorithm 1's lines 7-8 for one candidate: its cavity grown, checked and remeshed by the
+  // parallel iteration's kernels (it is point 0 of its own tuples; marks are cleared after).
+  int insert_one(const Candidate& c, const TouchLog& touched) {
+    std::vector<CavityTuple>& tp = seq_tuples;
+    tp.clear();
+    MeshView mv = dm.view();
+    int failed = 0;
+    tp.push_back(CavityTuple{0, c.kind == 0 ? split_start(mv, c) : c.start, kForceIn});
+    const GrowCavity grow{mv, &c, &failed, params.criteria.lens_cos2, touched};
+    for (std::size_t i = 0; i < tp.size() && !failed; ++i) {
+      CavityTuple out[3];
+      const int n = grow(static_cast<long long>(i), tp[i], out);
+      tp.insert(tp.end(), out, out + n);
+    }
+    const auto clear_marks = [&] {
+      for (const CavityTuple& h : tp) mv.mark[h.tri] = 0;
+    };
+    if (failed) {
+      clear_marks();
+      return 0;
+    }
+    const long long nt = static_cast<long long>(tp.size());
+    const CavityTuple* th = tp.data();
+    for (long long i = 0; i < nt; ++i) SetInCavity{mv, &c, th, &failed, 1}(i);
+    for (long long i = 0; i < nt; ++i) CheckCavity{mv, &c, th, &failed}(i);
+    if (failed) {
+      for (long long i = 0; i < nt; ++i) SetInCavity{mv, &c, th, &failed, 0}(i);
+      clear_marks();
+      return 0;
+    }
+    seq_base.resize(tp.size());
+    for (long long i = 0; i < nt; ++i) CountFanEdges{mv, &c, th, &failed, seq_base.data()}(i);
+    int new_tris = 0;
+    for (int& b : seq_base) {
+      const int n = b;
+      b = new_tris;
+      new_tris += n;
+    }
+    const int old_ntri = dm.ntri, pid = dm.npts;
+    dm.reserve(old_ntri + new_tris, pid + 1);
+    dm.ntri = old_ntri + new_tris;
+    dm.npts = pid + 1;
+    mv = dm.view();
+    for (long long i = 0; i < nt; ++i) StoreSlotBase{mv, th, &failed, seq_base.data()}(i);
+    for (long long i = 0; i < nt; ++i) CreateFan{mv, &c, th, &failed, &pid, old_ntri}(i);
+    for (long long i = 0; i < nt; ++i) LinkFan{mv, &c, th, &failed, old_ntri, error.data()}(i);
+    for (long long i = 0; i < nt; ++i) KillCavity{mv, th, &failed}(i);
+    WritePoints{mv, &c, &failed, &pid}(0);
+    clear_marks();
+    res.inserted += 1;
+    dead += std::max(0, new_tris - 2);
+    return 1;
   }
 
   // Line 8: remesh each winning cavity as a fan from its point, then compact (S1) once a

@@ -637,6 +637,11 @@ struct ComputeSplittingPoints {
     cand.y = p[1];
     cand.kind = -1;
     if (!(r2 < 1e300) || p[0] != p[0] || p[1] != p[1]) return;  // degenerate triangle
+    // The priority before the walk: the one-at-a-time sweep orders by it without walking.
+    if (worst_first && !too_big(m, t, c))
+      cand.prio = exec::make_priority(kClassShape, shortest_edge_class(m, t), id);
+    else
+      cand.prio = exec::make_priority(kClassTriangle, size_class(r2), id);
     int u = t;
     const int steps = max_steps < c.step_limit ? max_steps : c.step_limit;
     for (int step = 0; step < steps; ++step) {
@@ -654,10 +659,6 @@ struct ComputeSplittingPoints {
         cand.kind = 1;
         cand.start = u;
         cand.ek = -1;
-        if (worst_first && !too_big(m, t, c))
-          cand.prio = exec::make_priority(kClassShape, shortest_edge_class(m, t), id);
-        else
-          cand.prio = exec::make_priority(kClassTriangle, size_class(r2), id);
         return;
       }
       if (is_subseg(m, u, exit) || m.tn[3 * u + exit] < 0) {

@@ -56,7 +56,38 @@ r2d::Criteria make_criteria(const Refine2dOptions& o) {
   return c;
 }
 
-// Design strategies switched off for a measurement: GDR_DISABLE=s1,s3,s4,s5,touching,block_rounds,grid_rounds,worst_first,graded,work_list,cdt_assembly
+// Up to this many CPU threads, refinement inserts its points one at a time
+// (r2d::Engine::one_at_a_time) instead of by parallel iterations, unless segments meet at
+// angles below kOneAtATimeLeastAngle radians: there (segments from one point whose ends lie
+// within rounding of each other) one point at a time cascaded where the parallel
+// iteration's graded order ends (Testing: fan_cascade33.poly, FanOfTinyAnglesDoesNotCascade,
+// 8,182 points and a stall against 1,487). Fans down to 1.7e-5 rad meshed alike both ways.
+constexpr int kOneAtATimeThreads = 2;
+constexpr double kOneAtATimeLeastAngle = 1e-5;
+
+// The smallest angle between two segments at a shared point, in radians (pi without two).
+double smallest_segment_angle(const r2d::CleanPslg& g) {
+  const int n = static_cast<int>(g.points.size());
+  std::vector<int> start(n + 1, 0), other(2 * g.segments.size());
+  for (const auto& s : g.segments) ++start[s[0] + 1], ++start[s[1] + 1];
+  for (int v = 0; v < n; ++v) start[v + 1] += start[v];
+  std::vector<int> at(start.begin(), start.end() - 1);
+  for (const auto& s : g.segments) other[at[s[0]]++] = s[1], other[at[s[1]]++] = s[0];
+  double least = kPi;
+#pragma omp parallel for reduction(min : least) schedule(dynamic, 4096)
+  for (int v = 0; v < n; ++v) {
+    if (start[v + 1] - start[v] < 2) continue;
+    std::vector<double> dir;
+    for (int k = start[v]; k < start[v + 1]; ++k)
+      dir.push_back(std::atan2(g.points[other[k]].y - g.points[v].y, g.points[other[k]].x - g.points[v].x));
+    std::sort(dir.begin(), dir.end());
+    dir.push_back(dir.front() + 2 * kPi);
+    for (std::size_t k = 0; k + 1 < dir.size(); ++k) least = std::min(least, dir[k + 1] - dir[k]);
+  }
+  return least;
+}
+
+// Design strategies switched off for a measurement: GDR_DISABLE=s1,s3,s4,s5,touching,block_rounds,grid_rounds,worst_first,graded,work_list,cdt_assembly,one_at_a_time
 // (benchmarks only; see Benchmarks/README.md).
 r2d::Strategies strategies_from_environment() {
   r2d::Strategies s;
@@ -73,10 +104,11 @@ r2d::Strategies strategies_from_environment() {
         else if (name == "graded") s.graded = false;
         else if (name == "work_list") s.work_list = false;
         else if (name == "cdt_assembly") s.cdt_assembly = false;
+        else if (name == "one_at_a_time") s.one_at_a_time = false;
         else return false;
         return true;
       },
-      "s1, s3, s4, s5, touching, block_rounds, grid_rounds, worst_first, graded, work_list, cdt_assembly");
+      "s1, s3, s4, s5, touching, block_rounds, grid_rounds, worst_first, graded, work_list, cdt_assembly, one_at_a_time");
   return s;
 }
 
@@ -656,6 +688,9 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
 
   step("caps");
   params.strategies = strategies;
+  params.one_at_a_time = st.backend_used == Backend::Cpu && strategies.one_at_a_time &&
+                         engine_threads <= kOneAtATimeThreads &&
+                         smallest_segment_angle(pslg) >= kOneAtATimeLeastAngle;
   if (!options.refine) params.max_iterations = 0;
   Callbacks engine_cb = cb;
   engine_cb.abort = [&] { return thin_refused.load() || (cb.abort && cb.abort()); };
