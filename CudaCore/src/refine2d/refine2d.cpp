@@ -637,6 +637,9 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
   // subsegments and bad triangles the same way).
   r2d::EngineParams params;
   params.criteria = crit;
+  params.one_at_a_time = options.refine && st.backend_used == Backend::Cpu && strategies.one_at_a_time &&
+                         engine_threads <= kOneAtATimeThreads &&
+                         smallest_segment_angle(pslg) >= kOneAtATimeLeastAngle;
   params.region_area2 = region_area2;
   if (options.refine) {
     const double capacity = triangle_capacity(st.backend_used);
@@ -671,7 +674,8 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
   std::atomic<bool> thin_refused{false};
   std::future<std::string> thin_beside;
   if (options.refine && options.min_angle > 0 && st.automatic_steiner_cap) {
-    if (st.backend_used == Backend::Gpu && !prepared)
+    // (Beside one point at a time too: that refinement keeps one thread busy.)
+    if ((st.backend_used == Backend::Gpu || params.one_at_a_time) && !prepared)
       thin_beside = std::async(std::launch::async, [&] {
         std::string why = thin_refusal();
         if (!why.empty()) thin_refused = true;
@@ -688,9 +692,6 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
 
   step("caps");
   params.strategies = strategies;
-  params.one_at_a_time = st.backend_used == Backend::Cpu && strategies.one_at_a_time &&
-                         engine_threads <= kOneAtATimeThreads &&
-                         smallest_segment_angle(pslg) >= kOneAtATimeLeastAngle;
   if (!options.refine) params.max_iterations = 0;
   Callbacks engine_cb = cb;
   engine_cb.abort = [&] { return thin_refused.load() || (cb.abort && cb.abort()); };
