@@ -440,6 +440,18 @@ GDR_HD_INLINE int shortest_edge_level(const MeshView& m, int t) {
   return static_cast<int>(floor(2.0 * log2(l2)));
 }
 
+// The one-at-a-time queue's order among triangles bad by their shape (Engine::key), smaller
+// first: the shortest edge's square, a little smaller for worse shapes.
+GDR_HD_INLINE float shape_order(const MeshView& m, int t) {
+  const double* a = pt(m, m.tv[3 * t]);
+  const double* b = pt(m, m.tv[3 * t + 1]);
+  const double* d = pt(m, m.tv[3 * t + 2]);
+  const double l2 = fmin(dist2(a, b), fmin(dist2(b, d), dist2(d, a)));
+  double area2, sin2;
+  triangle_measures(m, t, area2, sin2);
+  return static_cast<float>(l2 * (0.5 + sin2));
+}
+
 GDR_HD_INLINE float shortest_edge_class(const MeshView& m, int t) {
   return static_cast<float>(2200 - shortest_edge_level(m, t));  // positive
 }
