@@ -56,6 +56,14 @@ class Buffer {
     }
     size_ = n;
   }
+  // Room for n elements without changing the size (contents kept): a loop that grows the
+  // array a few elements at a time then copies it once instead of at every sixteenth.
+  void reserve(std::size_t n) {
+    if (n <= capacity_) return;
+    const std::size_t size = size_;
+    resize(n);
+    size_ = size;
+  }
   // Exact-size reallocation (frees slack after compaction).
   void shrink_to(std::size_t n) {
     if (n >= capacity_) return resize(n);

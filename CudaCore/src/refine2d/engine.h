@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -614,13 +615,15 @@ struct Engine {
   // does after kOneAtATimeSweeps sweeps. Returns the points inserted.
   static constexpr int kOneAtATimeSweeps = 8, kSweepGrowth = 1 << 16;
   bool handed_over = false;
-  struct Waiting {
-    u64 key;  // key()
-    int e;    // element: triangle * 4 + slot
-    bool operator<(const Waiting& o) const { return key < o.key; }
+  // The queue: a first-come-first-served bucket per key, the highest key first. Keys take a
+  // few hundred values at a time, so buckets cost less than a heap of the elements (whose
+  // pops were 5% of one thread's run on the 1M map); the order is the same.
+  struct Bucket {
+    std::vector<int> e;  // elements: triangle * 4 + slot
+    std::size_t head = 0;
   };
-  std::vector<Waiting> queue;
-  unsigned queued = 0;
+  std::map<unsigned, Bucket> queue;
+  std::size_t waiting = 0;
   unsigned salt = 0;
   // The queue's key: the element's priority class and size, then first come first served.
   // Triangles bad by their shape go by levels a factor 2^(1/8) apart of the square of their
@@ -631,17 +634,39 @@ struct Engine {
   // bare edge length once took 1.7x as many (a generated 100k-segment map at 30), and the
   // order without levels lost the locality of first come first served (one thread: 3.8 s
   // against 2.9 s on the 1M map).
-  u64 key(u64 prio, int e) {
+  unsigned key(u64 prio, int e) {
     u64 hi = prio >> 32;
     if ((hi >> 30) == kClassShape) {
       const int level = static_cast<int>(std::floor(8.0 * std::log2(static_cast<double>(shape_order(dm.view(), e >> 2)))));
       hi = (u64(kClassShape) << 30) | static_cast<u64>((1 << 29) - level);  // smaller first
     }
-    return (hi << 32) | (0xffffffffu - queued++);
+    return static_cast<unsigned>(hi);
   }
   void enqueue(u64 prio, int e) {
-    queue.push_back(Waiting{key(prio, e), e});
-    std::push_heap(queue.begin(), queue.end());
+    queue[key(prio, e)].e.push_back(e);
+    ++waiting;
+  }
+  bool dequeue(int& e) {
+    if (queue.empty()) return false;
+    const auto last = std::prev(queue.end());
+    Bucket& b = last->second;
+    e = b.e[b.head++];
+    if (b.head == b.e.size()) queue.erase(last);
+    --waiting;
+    return true;
+  }
+  // Element e's priority (false: it has no splitting point), its point computed only where
+  // the order needs its size: key() orders the triangles bad by their shape.
+  bool element_priority(const MeshView& mv, int e, u64& prio) const {
+    if ((e & 3) == 3 && params.strategies.worst_first && !too_big(mv, e >> 2, crit)) {
+      prio = u64(kClassShape) << 62;
+      return true;
+    }
+    Candidate c;
+    ComputeSplittingPoints{mv, crit, &e, &c, salt, params.strategies.worst_first, u64(1) << 32, 0, false, 0,
+                           nullptr, {}}(0);
+    prio = c.prio;
+    return c.kind != -1;
   }
   // The elements of triangle t (slots in `slots`), queued with their priorities.
   void enqueue_elements(const MeshView& mv, int t, int slots) {
@@ -649,11 +674,8 @@ struct Engine {
     const int mask = collect_mask(mv.tflag[t]) & slots;
     for (int k = 0; k < 4; ++k) {
       if (!(mask & (1 << k))) continue;
-      const int e = 4 * t + k;
-      Candidate c;
-      ComputeSplittingPoints{mv, crit, &e, &c, salt, params.strategies.worst_first, u64(1) << 32, 0, false, 0,
-                             nullptr, {}}(0);
-      if (c.kind != -1) enqueue(c.prio, e);
+      u64 prio;
+      if (element_priority(mv, 4 * t + k, prio)) enqueue(prio, 4 * t + k);
     }
   }
   std::vector<CavityTuple> seq_tuples;  // insert_one's scratch
@@ -663,48 +685,51 @@ struct Engine {
       return 0;
     } else {
       salt = 0x9e3779b9u * static_cast<unsigned>(iter + 1);
-      // The listed elements' priorities without walks (max_steps 0), all threads.
+      // The listed elements' priorities, all threads.
       cand_all.resize_discard(nl);
-      Ops::for_each(nl, ComputeSplittingPoints{dm.view(), crit, list.data(), cand_all.data(), salt,
-                                               params.strategies.worst_first, u64(1) << 32, 0, false, 0,
-                                               nullptr, {}});
+      {
+        Candidate* ca = cand_all.data();
+        const int* lst = list.data();
+        const MeshView mv = dm.view();
+        Ops::for_each(nl, [&, ca, lst, mv](long long j) { ca[j].kind = element_priority(mv, lst[j], ca[j].prio) ? 1 : -1; });
+      }
       queue.clear();
-      queued = 0;
+      waiting = 0;
       const Candidate* ca = cand_all.data();
       const int* lst = list.data();
       for (std::size_t j = 0; j < nl; ++j)
-        if (ca[j].kind != -1)
-          queue.push_back(Waiting{key(ca[j].prio, lst[j]), lst[j]});
-      std::make_heap(queue.begin(), queue.end());
+        if (ca[j].kind != -1) enqueue(ca[j].prio, lst[j]);
       cand_all.release();
       dm.mark.zero();  // each point claims its cavity from clean marks and clears them after
       clock.template stop<Space>("split+locate");
       long long won = 0, sized = 0;  // points inserted, those for triangles too big
       const int grown = 2 * dm.ntri + kSweepGrowth;  // the sweep ends once the mesh is this large
+      // About what the listed elements' points make (2.5 new triangles per element on the
+      // maps); more grows by sixteenths.
+      const double room = dm.ntri + 3.0 * static_cast<double>(nl) + 4096;
+      dm.reserve_room(static_cast<int>(std::min<double>(room, grown)), dm.npts + static_cast<int>(std::min<double>(nl, grown)));
       int touched_ids[4];
       int touched_count = 0;
       const TouchLog mine{touched_ids, &touched_count, 4};
-      while (!queue.empty() && dm.ntri < grown) {
-        if ((won & 4095) == 4095) {
+      int e = 0;
+      for (long long popped = 1; dm.ntri < grown && dequeue(e); ++popped) {
+        if ((popped & 4095) == 0) {
           if (cb.abort && cb.abort()) throw Error(Status::Aborted, "refinement aborted by the caller");
-          if (cb.progress && (won & 262143) == 262143)
+          if (cb.progress && (popped & 524287) == 0)
             cb.progress(0.0, "iteration " + std::to_string(iter + 1) + ": " + std::to_string(won) +
-                                 " points inserted, " + std::to_string(queue.size()) + " bad elements waiting");
+                                 " points inserted, " + std::to_string(waiting) + " bad elements waiting");
         }
         if (params.max_steiner >= 0 && res.inserted >= params.max_steiner) {
           res.cap_reached = true;
           break;
         }
-        std::pop_heap(queue.begin(), queue.end());
-        const Waiting w = queue.back();
-        queue.pop_back();
-        const int t = w.e >> 2;
+        const int t = e >> 2;
         MeshView mv = dm.view();
         // Gone, or no longer an element (a subsegment split from its other side): skip.
-        if (!(collect_count(mv, crit, t) && (collect_mask(mv.tflag[t]) & (1 << (w.e & 3))))) continue;
+        if (!(collect_count(mv, crit, t) && (collect_mask(mv.tflag[t]) & (1 << (e & 3))))) continue;
         Candidate c;
         touched_count = 0;
-        ComputeSplittingPoints{mv, crit, &w.e, &c, salt, params.strategies.worst_first, u64(1) << 32,
+        ComputeSplittingPoints{mv, crit, &e, &c, salt, params.strategies.worst_first, u64(1) << 32,
                                params.criteria.step_limit, false, 0, nullptr, mine}(0);
         const int old_ntri = dm.ntri;
         const int in = c.kind < 0 ? 0 : insert_one(c, mine);

@@ -157,6 +157,14 @@ struct DeviceMesh {
   }
 
   // Room for `tris` triangles and `pts` points, keeping contents.
+  // Room for tris triangles and pts points, sizes unchanged (Buffer::reserve).
+  void reserve_room(int tris, int pts) {
+    for (auto* b : {&tv, &tn}) b->reserve(3 * std::size_t(tris));
+    for (auto* b : {&tflag, &mark, &aux}) b->reserve(tris);
+    xy.reserve(2 * std::size_t(pts));
+    ptype.reserve(pts);
+    pseg.reserve(pts);
+  }
   void reserve(int tris, int pts) {
     if (tris > ntri) {
       tv.resize(3 * std::size_t(tris));
