@@ -597,7 +597,7 @@ struct Engine {
       compete_cap = compete_cap > SIZE_MAX / 4 ? SIZE_MAX : 4 * compete_cap;
   }
 
-  // One point at a time (the CPU on 1-2 threads, issue 14). The parallel iteration computes
+  // One point at a time (the CPU on up to 4 threads, issue 14). The parallel iteration computes
   // a point for every bad element and grows a cavity for every candidate, but only the points
   // whose cavities win go in: on one thread, the generated 1M-segment map's 508k Steiner
   // points cost 4.9M splitting points and walks and 2.6M cavities over 81 iterations (16 s).
