@@ -625,25 +625,11 @@ struct Engine {
   std::map<unsigned, Bucket> queue;
   std::size_t waiting = 0;
   unsigned salt = 0;
-  // The queue's key: the element's priority class and size, then first come first served.
-  // Triangles bad by their shape go by levels a factor 2^(1/8) apart of the square of their
-  // shortest edge times 0.5 plus the square of the sine of their smallest angle (kernels.h,
-  // shape_order), smaller first. On the maps at 20-30 degrees, the parallel iteration's
-  // levels of the shortest edge alone (a factor 2^(1/4) apart in length) took 1-8% more
-  // points (generated 1M-segment map at 20: 527,771 against 489,156); without levels, the
-  // bare edge length once took 1.7x as many (a generated 100k-segment map at 30), and the
-  // order without levels lost the locality of first come first served (one thread: 3.8 s
-  // against 2.9 s on the 1M map).
-  unsigned key(u64 prio, int e) {
-    u64 hi = prio >> 32;
-    if ((hi >> 30) == kClassShape) {
-      const int level = static_cast<int>(std::floor(8.0 * std::log2(static_cast<double>(shape_order(dm.view(), e >> 2)))));
-      hi = (u64(kClassShape) << 30) | static_cast<u64>((1 << 29) - level);  // smaller first
-    }
-    return static_cast<unsigned>(hi);
-  }
+  // The queue's key: the element's priority class and size (first come first served among
+  // equals; kernels.h, shape_class).
+  static unsigned key(u64 prio) { return static_cast<unsigned>(prio >> 32); }
   void enqueue(u64 prio, int e) {
-    queue[key(prio, e)].e.push_back(e);
+    queue[key(prio)].e.push_back(e);
     ++waiting;
   }
   bool dequeue(int& e) {
@@ -656,10 +642,10 @@ struct Engine {
     return true;
   }
   // Element e's priority (false: it has no splitting point), its point computed only where
-  // the order needs its size: key() orders the triangles bad by their shape.
+  // the order needs its size.
   bool element_priority(const MeshView& mv, int e, u64& prio) const {
     if ((e & 3) == 3 && params.strategies.worst_first && !too_big(mv, e >> 2, crit)) {
-      prio = u64(kClassShape) << 62;
+      prio = exec::make_priority(kClassShape, shape_class(mv, e >> 2), 0);
       return true;
     }
     Candidate c;

@@ -419,10 +419,10 @@ using exec::size_class;
 
 // Triangles: those too big for the size bounds first, larger first by size classes (the
 // paper's order); then those bad by their shape alone, smallest first: by the length of their
-// shortest edge, in classes of a factor sqrt(2) of its square, as Triangle's queue orders them
-// (smallest features first, so that the points around them are placed before the coarser ones
-// that they would otherwise crowd). For shape, larger-first needs more points and cascades
-// sooner above 30 degrees (the world map at 33.5 degrees took 1.3M Steiner points larger-first
+// shortest edge, in classes of a factor sqrt(2) of its square (shortest_edge_class; one point
+// at a time, shape_class), as Triangle's queue orders them (smallest features first, so that
+// the points around them are placed before the coarser ones that they would otherwise crowd).
+// For shape, larger-first needs more points and cascades sooner above 30 degrees (the world map at 33.5 degrees took 1.3M Steiner points larger-first
 // against 345k worst-first by radius-edge ratio); smallest-first needs 3-10% fewer points than
 // worst-first at 20-30 degrees (Benchmarks/RESULTS.md, issue 13). For size, a finer order takes
 // more iterations (counties at 1M points: 89 against 68 on the H100, 29% slower).
@@ -440,18 +440,28 @@ GDR_HD_INLINE int shortest_edge_level(const MeshView& m, int t) {
   return static_cast<int>(floor(2.0 * log2(l2)));
 }
 
-// The one-at-a-time queue's order among triangles bad by their shape (Engine::key), smaller
-// first: the shortest edge's square, a little smaller for worse shapes.
-GDR_HD_INLINE float shape_order(const MeshView& m, int t) {
+// The one-at-a-time queue's order among triangles bad by their shape (Engine::one_at_a_time),
+// smaller triangles first: levels a factor 2^(1/8) apart of the shortest edge's square times
+// 0.5 plus the square of the sine of the smallest angle (worse shapes a little earlier). One
+// point at a time, the parallel iteration's levels of the shortest edge alone (below) took
+// 1-8% more points on the maps at 20-30 degrees (generated 1M-segment map at 20 degrees:
+// 527,771 against 489,156), the bare edge length once 1.7x as many (a generated 100k-segment
+// map at 30 degrees), and an order without levels lost the locality of first come first
+// served among equals (one thread: 3.8 s against 2.9 s on the 1M map). In the parallel
+// iteration it took 0.1-3.4% fewer points on the maps (the 1M map 492,515 against 508,527)
+// but cascaded at tiny input angles (Testing: fan_cascade33.poly, 6,052 points and a stall
+// against 1,484), so the parallel iteration keeps shortest_edge_class.
+GDR_HD_INLINE float shape_class(const MeshView& m, int t) {
   const double* a = pt(m, m.tv[3 * t]);
   const double* b = pt(m, m.tv[3 * t + 1]);
   const double* d = pt(m, m.tv[3 * t + 2]);
   const double l2 = fmin(dist2(a, b), fmin(dist2(b, d), dist2(d, a)));
   double area2, sin2;
   triangle_measures(m, t, area2, sin2);
-  return static_cast<float>(l2 * (0.5 + sin2));
+  return static_cast<float>(20000.0 - floor(8.0 * log2(l2 * (0.5 + sin2))));  // positive
 }
 
+// The parallel iteration's priority size of a triangle bad by its shape: smaller higher.
 GDR_HD_INLINE float shortest_edge_class(const MeshView& m, int t) {
   return static_cast<float>(2200 - shortest_edge_level(m, t));  // positive
 }
