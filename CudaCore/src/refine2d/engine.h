@@ -648,7 +648,7 @@ struct Engine {
       prio = exec::make_priority(kClassShape, shape_class(mv, e >> 2), 0);
       return true;
     }
-    Candidate c;
+    Candidate c{};
     ComputeSplittingPoints{mv, crit, &e, &c, salt, params.strategies.worst_first, u64(1) << 32, 0, false, 0,
                            nullptr, {}}(0);
     prio = c.prio;
@@ -713,7 +713,7 @@ struct Engine {
         MeshView mv = dm.view();
         // Gone, or no longer an element (a subsegment split from its other side): skip.
         if (!(collect_count(mv, crit, t) && (collect_mask(mv.tflag[t]) & (1 << (e & 3))))) continue;
-        Candidate c;
+        Candidate c{};
         touched_count = 0;
         ComputeSplittingPoints{mv, crit, &e, &c, salt, params.strategies.worst_first, u64(1) << 32,
                                params.criteria.step_limit, false, 0, nullptr, mine}(0);
