@@ -76,15 +76,19 @@ double smallest_segment_angle(const r2d::CleanPslg& g) {
   std::vector<int> at(start.begin(), start.end() - 1);
   for (const auto& s : g.segments) other[at[s[0]]++] = s[1], other[at[s[1]]++] = s[0];
   double least = kPi;
-#pragma omp parallel for reduction(min : least) schedule(dynamic, 4096)
-  for (int v = 0; v < n; ++v) {
-    if (start[v + 1] - start[v] < 2) continue;
-    std::vector<double> dir;
-    for (int k = start[v]; k < start[v + 1]; ++k)
-      dir.push_back(std::atan2(g.points[other[k]].y - g.points[v].y, g.points[other[k]].x - g.points[v].x));
-    std::sort(dir.begin(), dir.end());
-    dir.push_back(dir.front() + 2 * kPi);
-    for (std::size_t k = 0; k + 1 < dir.size(); ++k) least = std::min(least, dir[k + 1] - dir[k]);
+#pragma omp parallel reduction(min : least)
+  {
+    std::vector<double> dir;  // one per thread, not one per point
+#pragma omp for schedule(dynamic, 4096)
+    for (int v = 0; v < n; ++v) {
+      if (start[v + 1] - start[v] < 2) continue;
+      dir.clear();
+      for (int k = start[v]; k < start[v + 1]; ++k)
+        dir.push_back(std::atan2(g.points[other[k]].y - g.points[v].y, g.points[other[k]].x - g.points[v].x));
+      std::sort(dir.begin(), dir.end());
+      dir.push_back(dir.front() + 2 * kPi);
+      for (std::size_t k = 0; k + 1 < dir.size(); ++k) least = std::min(least, dir[k + 1] - dir[k]);
+    }
   }
   return least;
 }
