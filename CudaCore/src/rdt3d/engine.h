@@ -87,7 +87,7 @@ struct Engine {
   bool stagnant = false;
   bool features = false;  // the mesh has feature subsegments
   const bool trace = std::getenv("GDR_TRACE") != nullptr;
-  m3d::StallDetector stall;
+  m3d::StallDetector stall{true};  // turnover counts as progress (mesh3d/stall.h)
   // Each round refines the facets where the surface pinches; they shrink to the criterion's
   // floor (Criteria::manifold_min2), so the rounds end. The bound is a guard.
   static constexpr int kManifoldRounds = 200;

@@ -152,6 +152,85 @@ std::vector<Piece> grade_small_angles(std::vector<double>& xyz, const std::vecto
   return pieces;
 }
 
+// Feature edges that pass close by each other without meeting (the two sides of a slot
+// narrower than their edges are long) would each be taken away by the other's splits, and
+// refinement would block one of them, leaving the slot unresolved and the surface wrong
+// there. Pieces are split at midpoints until no piece's diametral ball meets a piece of a
+// feature edge that shares no corner with its own (those at a corner are graded above), down
+// to pieces of 2 feature_min; a point splitting one later then stays out of the other's ball.
+void split_pieces_near_other_features(std::vector<double>& xyz, const std::vector<std::array<int, 2>>& ends,
+                                      double feature_min, std::vector<Piece>& pieces,
+                                      std::vector<int>& point_segment) {
+  auto at = [&](int v) { return &xyz[3 * std::size_t(v)]; };
+  auto touching = [&](int s, int u) {
+    return s == u || ends[s][0] == ends[u][0] || ends[s][0] == ends[u][1] || ends[s][1] == ends[u][0] ||
+           ends[s][1] == ends[u][1];
+  };
+  for (int round = 0; round < 64; ++round) {
+    // A uniform grid of the pieces' boxes, cells as long as the median piece.
+    std::vector<double> lengths(pieces.size());
+    for (std::size_t i = 0; i < pieces.size(); ++i) lengths[i] = std::sqrt(m3d::dist2(at(pieces[i].a), at(pieces[i].b)));
+    if (pieces.empty()) return;
+    std::vector<double> sorted = lengths;
+    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+    const double h = std::max(sorted[sorted.size() / 2], 2 * feature_min);
+    std::map<std::array<long long, 3>, std::vector<int>> grid;
+    auto cell = [&](double x) { return static_cast<long long>(std::floor(x / h)); };
+    auto for_cells = [&](const double* lo, const double* hi, auto&& visit) {
+      for (long long i = cell(lo[0]); i <= cell(hi[0]); ++i)
+        for (long long j = cell(lo[1]); j <= cell(hi[1]); ++j)
+          for (long long k = cell(lo[2]); k <= cell(hi[2]); ++k) visit(std::array<long long, 3>{i, j, k});
+    };
+    for (std::size_t i = 0; i < pieces.size(); ++i) {
+      const double *p = at(pieces[i].a), *q = at(pieces[i].b);
+      const double lo[3] = {std::min(p[0], q[0]), std::min(p[1], q[1]), std::min(p[2], q[2])};
+      const double hi[3] = {std::max(p[0], q[0]), std::max(p[1], q[1]), std::max(p[2], q[2])};
+      for_cells(lo, hi, [&](const std::array<long long, 3>& k) { grid[k].push_back(static_cast<int>(i)); });
+    }
+    std::vector<Piece> next;
+    next.reserve(pieces.size());
+    for (std::size_t i = 0; i < pieces.size(); ++i) {
+      const Piece& pc = pieces[i];
+      bool split = false;
+      if (lengths[i] >= 2 * feature_min) {
+        const double *p = at(pc.a), *q = at(pc.b);
+        const double c[3] = {(p[0] + q[0]) / 2, (p[1] + q[1]) / 2, (p[2] + q[2]) / 2};
+        const double r = lengths[i] / 2;
+        const double lo[3] = {c[0] - r, c[1] - r, c[2] - r}, hi[3] = {c[0] + r, c[1] + r, c[2] + r};
+        for_cells(lo, hi, [&](const std::array<long long, 3>& k) {
+          const auto found = grid.find(k);
+          if (split || found == grid.end()) return;
+          for (const int j : found->second) {
+            if (touching(pc.segment, pieces[j].segment)) continue;
+            // Squared distance from c to the piece j.
+            const double *a = at(pieces[j].a), *b = at(pieces[j].b);
+            const double d[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+            const double dd = m3d::dot3(d, d);
+            const double t = dd > 0 ? std::clamp(m3d::dot3(w, d) / dd, 0.0, 1.0) : 0.0;
+            const double x[3] = {a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2]};
+            if (m3d::dist2(c, x) < r * r) {
+              split = true;
+              break;
+            }
+          }
+        });
+      }
+      if (!split) {
+        next.push_back(pc);
+        continue;
+      }
+      const int m = static_cast<int>(xyz.size() / 3);
+      for (int k = 0; k < 3; ++k) xyz.push_back(0.5 * (xyz[3 * std::size_t(pc.a) + k] + xyz[3 * std::size_t(pc.b) + k]));
+      point_segment.push_back(pc.segment);
+      next.push_back({pc.a, m, pc.segment});
+      next.push_back({m, pc.b, pc.segment});
+    }
+    const bool done = next.size() == pieces.size();
+    pieces = std::move(next);
+    if (done) return;
+  }
+}
+
 // The initial triangulation with feature subsegments: each feature edge (a segment of the
 // mesh, its ends given as point ids of xyz) is graded at small angles, then split at
 // midpoints until every piece is an edge of the Delaunay triangulation of all the points;
@@ -162,6 +241,7 @@ m3d::HostTetMesh triangulate_with_features(std::vector<double>& xyz, const std::
   const int given = static_cast<int>(xyz.size() / 3);
   std::vector<int> midpoint_segment;  // per appended point
   std::vector<Piece> pieces = grade_small_angles(xyz, ends, feature_min, midpoint_segment);
+  split_pieces_near_other_features(xyz, ends, feature_min, pieces, midpoint_segment);
   for (;;) {  // ends: pieces shorter than their distance to any other point are edges
     m3d::HostTetMesh mesh = cdt3d::delaunay_tetrahedralization(xyz);
     std::set<std::uint64_t> edges;

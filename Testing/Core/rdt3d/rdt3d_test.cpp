@@ -397,15 +397,22 @@ TEST_P(RestrictedDelaunayOnBackend, CadPartKeepsItsFeatures) {
   RestrictedDelaunayOptions o = keeping_triangulation(GetParam());
   o.feature_angle = 30;
   if (refused_on_gpu(s, o)) return;
-  const RestrictedDelaunayResult r = restricted_delaunay_3d(s, o, {});
-  // Refinement next to its small angles sometimes stops with a few facets and cells bad (9
-  // and 4 of 12k facets in 1-2 runs of 10 on the 2-core box, thread timing deciding): they
-  // are reported; every other check holds.
-  expect_valid(r, s, true, true, true, 100);
-  EXPECT_GT(r.stats.corners, 0);
-  const ValidationReport f = validate_surface_features(r.mesh.points, r.mesh.subfaces, r.mesh.subsegments, r.features);
-  EXPECT_TRUE(f.valid) << f.summary();
-  EXPECT_NEAR(r.stats.volume, enclosed_volume(s), 1e-6 * enclosed_volume(s));
+  // Its blocks stand 2 apart, the slots between them narrower than its edges are long: the
+  // slots' feature edges are split before refinement (blocked subsegments left the slots
+  // unresolved) and refinement is not stopped while points keep going in (it was, in about 1
+  // run of 8, thread timing deciding). Ten runs: no exceptions, a closed manifold, the exact
+  // volume in each.
+  for (int run = 0; run < 10; ++run) {
+    SCOPED_TRACE("run " + std::to_string(run));
+    const RestrictedDelaunayResult r = restricted_delaunay_3d(s, o, {});
+    expect_valid(r, s, true, true, true);
+    EXPECT_GT(r.stats.corners, 0);
+    const ValidationReport f =
+        validate_surface_features(r.mesh.points, r.mesh.subfaces, r.mesh.subsegments, r.features);
+    EXPECT_TRUE(f.valid) << f.summary();
+    EXPECT_NEAR(r.stats.volume, enclosed_volume(s), 1e-6 * enclosed_volume(s));
+    if (HasFailure()) break;
+  }
 }
 
 // Where the surface cuts across a sharp edge (CAD part thingi10k_288351: corners everywhere,
@@ -567,12 +574,13 @@ TEST_P(RestrictedDelaunayOnBackend, SmoothSurfaceUnaffectedByFeatureAngle) {
   EXPECT_EQ(r.stats.feature_edges, 0);
   expect_valid(r, s, true, true);
   // No feature edge, so the same path: the same volume, and on the CPU about the same
-  // counts. (The GPU's concurrent insertion does not repeat itself on a mesh this small: 838
-  // against 954 tets in two runs of the same options on the H100, 2026-11-24.)
+  // counts. (Concurrent insertion does not repeat itself on a mesh this small: 838 against
+  // 954 tets in two runs of the same options on the H100, 2026-11-24; on 2 CPU threads the
+  // runs end near 243 or near 262 points, 334 against 374 facets, so 10% failed 1 run in 10.)
   EXPECT_NEAR(r.stats.volume, plain.stats.volume, 0.01 * plain.stats.volume);
   if (GetParam() == Backend::Cpu) {
-    EXPECT_NEAR(double(r.mesh.tets.size()), double(plain.mesh.tets.size()), 0.10 * plain.mesh.tets.size());
-    EXPECT_NEAR(double(r.mesh.subfaces.size()), double(plain.mesh.subfaces.size()), 0.10 * plain.mesh.subfaces.size());
+    EXPECT_NEAR(double(r.mesh.tets.size()), double(plain.mesh.tets.size()), 0.2 * plain.mesh.tets.size());
+    EXPECT_NEAR(double(r.mesh.subfaces.size()), double(plain.mesh.subfaces.size()), 0.2 * plain.mesh.subfaces.size());
   }
 }
 
