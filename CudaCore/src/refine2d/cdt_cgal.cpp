@@ -7,7 +7,6 @@
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <CGAL/spatial_sort.h>
 
-#include <unordered_map>
 #include <unordered_set>
 
 #include "refine2d/input.h"
@@ -120,12 +119,7 @@ HostMesh initial_cdt(const CleanPslg& g, bool remove_exterior) {
   Cdt cdt;
   std::vector<Cdt::Vertex_handle> vh;
   insert_points(cdt, g.points, vh);
-  std::unordered_map<long long, int> seg_of;
-  seg_of.reserve(g.segments.size() * 2);
-  for (std::size_t s = 0; s < g.segments.size(); ++s) {
-    cdt.insert_constraint(vh[g.segments[s][0]], vh[g.segments[s][1]]);
-    seg_of[key(g.segments[s][0], g.segments[s][1])] = static_cast<int>(s);
-  }
+  for (const auto& s : g.segments) cdt.insert_constraint(vh[s[0]], vh[s[1]]);
 
   // Every finite face, numbered; the domain is cut out by assemble_cdt.
   CdtTriangles c;
@@ -133,7 +127,7 @@ HostMesh initial_cdt(const CleanPslg& g, bool remove_exterior) {
   for (auto f : cdt.finite_face_handles()) f->info() = nt++;
   c.tv.resize(3 * std::size_t(nt));
   c.tn.resize(3 * std::size_t(nt));
-  c.tseg.resize(3 * std::size_t(nt));
+  c.tseg.assign(3 * std::size_t(nt), -1);
   for (auto f : cdt.finite_face_handles()) {
     const int t = f->info();
     for (int i = 0; i < 3; ++i) {
@@ -143,29 +137,35 @@ HostMesh initial_cdt(const CleanPslg& g, bool remove_exterior) {
       c.tn[3 * t + i] = cdt.is_infinite(nb) ? -1 : 3 * nb->info() + nb->index(f);
     }
   }
+  // Each segment's edge, found around its first vertex (no table of 2M edges to hash).
+  for (std::size_t s = 0; s < g.segments.size(); ++s) {
+    Cdt::Face_handle f;
+    int i;
+    if (!cdt.is_edge(vh[g.segments[s][0]], vh[g.segments[s][1]], f, i)) continue;  // split: found below
+    for (int side = 0; side < 2; ++side) {
+      if (!cdt.is_infinite(f)) c.tseg[3 * f->info() + i] = static_cast<int>(s);
+      const Cdt::Face_handle nb = f->neighbor(i);
+      i = nb->index(f);
+      f = nb;
+    }
+  }
   for (auto f : cdt.finite_face_handles()) {
     const int t = f->info();
     for (int i = 0; i < 3; ++i) {
-      int s = -1;
-      if (f->is_constrained(i)) {
+      if (f->is_constrained(i) && c.tseg[3 * t + i] < 0) {
+        // A constraint CGAL split at a point on it: not an edge of the input.
+        // Numbered as in the input file (an intersection point has no number there).
         const int a = c.tv[3 * t + (i + 1) % 3], b = c.tv[3 * t + (i + 2) % 3];
-        auto it = seg_of.find(key(a, b));
-        if (it == seg_of.end()) {
-          // Numbered as in the input file (an intersection point has no number there).
-          auto name = [&](int v) {
-            const int o = g.point_origin[v];
-            return o < 0 ? std::string("(an intersection point)") : std::to_string(o + g.first_index);
-          };
-          throw Error(Status::SelfIntersectingInput,
-                      "a point lies on the interior of a segment near points " + name(a) +
-                          " and " + name(b) +
-                          " (split the segment there, or leave strict input off)");
-        }
-        s = it->second;
-      } else if (remove_exterior && c.tn[3 * t + i] < 0) {
-        c.exterior_seeds.push_back(t);  // reached from the infinite face
+        auto name = [&](int v) {
+          const int o = g.point_origin[v];
+          return o < 0 ? std::string("(an intersection point)") : std::to_string(o + g.first_index);
+        };
+        throw Error(Status::SelfIntersectingInput,
+                    "a point lies on the interior of a segment near points " + name(a) + " and " + name(b) +
+                        " (split the segment there, or leave strict input off)");
       }
-      c.tseg[3 * t + i] = s;
+      if (remove_exterior && !f->is_constrained(i) && c.tn[3 * t + i] < 0)
+        c.exterior_seeds.push_back(t);  // reached from the infinite face
     }
   }
   auto face_at = [&](const Point2& p) {
