@@ -57,6 +57,13 @@ enum : int {
   kFailReasons = 8,
 };
 
+// A point that makes room for a point on a segment or facet (kMakeRoomPoint: a free point,
+// or the subface split its walk met instead) goes in even if it encroaches a subsegment:
+// the subsegment it would wait for is often the one that asked for the room.
+GDR_HD_INLINE bool makes_room(const Candidate& c) {
+  return (c.kind == kFreeSplit || c.kind == kFacetSplit) && c.ek == kMakeRoomPoint;
+}
+
 struct PrioOf {
   const Candidate* cand;
   GDR_HD_INLINE u64 operator()(int k) const { return cand[k].prio; }
@@ -134,7 +141,7 @@ struct GrowCavity {
   // A sharp segment is never split for being encroached (it would cascade, TetGen): the
   // point that would encroach it is left out, and so is what asked for the point.
   GDR_HD bool encroaches_subsegment(int t, const Candidate& c) const {
-    if (c.kind == kSegmentSplit || (c.kind == kFreeSplit && c.ek == kMakeRoomPoint)) return false;
+    if (c.kind == kSegmentSplit || makes_room(c)) return false;
     const int flags = m.tflag[t];
     if (!(flags & kSegBits)) return false;
     for (int e = 0; e < 6; ++e) {
@@ -248,7 +255,7 @@ struct GrowCavity {
       const int x = m.sv[3 * s + (e + 1) % 3], y = m.sv[3 * s + (e + 2) % 3];
       const int ce = edge_index(corner_of(m, st0, x), corner_of(m, st0, y));
       if (is_subseg_edge(m, st0, ce)) {
-        if (c.kind == kFacetSplit && pred::in_diametral_sphere(pt(m, x), pt(m, y), c.p) > 0) {
+        if (c.kind == kFacetSplit && !makes_room(c) && pred::in_diametral_sphere(pt(m, x), pt(m, y), c.p) > 0) {
           if (!is_sharp_subseg(m, x, y)) exec::atomic_or(&m.tflag[st0], kSplitEdge0 << ce);
           else give_up(c);
           failed[h.pt] = kFailEncroach;

@@ -463,9 +463,28 @@ struct ComputeSplittingPoints {
         }
         exec::atomic_or(&m.tflag[u], m3d::kSplitFace0 << exit);
         make_subface_candidate(m, sub, id, c.step_limit, t, cand);
-        // Making room: the subface in the way goes first too.
-        if ((m.tflag[t] & m3d::kMakeRoom) && cand.kind >= 0)
+        if (!(m.tflag[t] & m3d::kMakeRoom)) return;
+        // Making room: the subface in the way goes first, even if it encroaches a subsegment
+        // (m3d::makes_room). Where its circumcentre lies beyond a subsegment (the walk across
+        // the facet turned it into that subsegment's split, most often the very split that
+        // asked for room: a turned CAD part stalled so, 7% of its volume bad), the room is
+        // made inside the tetrahedron itself, at its centroid.
+        if (cand.kind == m3d::kFacetSplit) {
           cand.prio = exec::make_priority(kClassSegment, 1e38f, id);
+          cand.ek = m3d::kMakeRoomPoint;
+          return;
+        }
+        for (int k = 0; k < 3; ++k) {
+          cand.p[k] = 0;
+          for (int q = 0; q < 4; ++q) cand.p[k] += 0.25 * pt(m, m.tv[4 * t + q])[k];
+        }
+        cand.kind = m3d::kFreeSplit;
+        cand.start = t;
+        cand.sub = -1;
+        cand.a = cand.b = -1;
+        cand.origin = t;
+        cand.prio = exec::make_priority(kClassSegment, 1e38f, id);
+        cand.ek = m3d::kMakeRoomPoint;
         return;
       }
       u = m.tn[4 * u + exit] >> 2;
