@@ -602,6 +602,10 @@ struct CheckCavity {
   const Candidate* cand;
   const CavityTuple* tuples;
   int* failed;
+  // After an iteration without headway: a point on a segment that sees a subface from
+  // behind asks for room there as well as for the subsegments it encroaches to be split
+  // (those can be waiting on it in turn: the rings of a part turned on a lathe stalled so).
+  bool room_too = false;
 
   // Decided on exact data: p on a planar facet F lies on the plane of F's subfaces (on a
   // facet merged across near-flat edges, the orientation tests decide); p on segment g
@@ -724,7 +728,7 @@ struct CheckCavity {
         // No star from p: the tetrahedron that hides p is split first (its circumsphere
         // holds p, so smaller tetrahedra there make room), and p tries again later.
         failed[h.pt] = kFailStar;
-        if (!(c.kind == kSegmentSplit && s >= 0 && split_encroached_subsegments(c, t)))
+        if (!(c.kind == kSegmentSplit && s >= 0 && split_encroached_subsegments(c, t)) || room_too)
           exec::atomic_or(&m.tflag[t], kMakeRoom);
       } else if (k == kFaceSplit) {
         const int nb = m.tn[4 * t + f];

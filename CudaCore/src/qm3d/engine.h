@@ -490,7 +490,7 @@ struct Engine {
                                         params.strategies.touching});
     Ops::for_each(nt, m3d::SetInCavity{mv, H.data(), failed.data(), 1});
     Ops::for_each(nt, m3d::MarkFlips{mv, cand.data(), H.data(), failed.data()});
-    Ops::for_each(nt, m3d::CheckCavity{mv, cand.data(), H.data(), failed.data()});
+    Ops::for_each(nt, m3d::CheckCavity{mv, cand.data(), H.data(), failed.data(), stagnant});
     Ops::for_each(nt, m3d::SetInCavity{mv, H.data(), failed.data(), 0});
   }
 
