@@ -602,9 +602,10 @@ struct CheckCavity {
   const Candidate* cand;
   const CavityTuple* tuples;
   int* failed;
-  // After an iteration without headway: a point on a segment that sees a subface from
-  // behind asks for room there as well as for the subsegments it encroaches to be split
+  // Once no point has gone in for two iterations: a point on a segment that sees a subface
+  // from behind asks for room there as well as for the subsegments it encroaches to be split
   // (those can be waiting on it in turn: the rings of a part turned on a lathe stalled so).
+  // Not earlier: on a scan (penguin, B = 2) it cost 4% more tetrahedra and 30% more time.
   bool room_too = false;
 
   // Decided on exact data: p on a planar facet F lies on the plane of F's subfaces (on a

@@ -110,6 +110,9 @@ struct Engine {
   // defers no cavity, so that points that keep failing (a cavity that touches a failing
   // higher one, a split that must wait) no longer block the same lower ones.
   bool stagnant = false;
+  // No point went in for two iterations: room is asked for and made more eagerly
+  // (CheckCavity::room_too, ComputeSplittingPoints::centroid_room).
+  bool idle_twice = false;
   long long dead_tets = 0, dead_subs = 0;  // since the last compaction
   int rounds = 0;                          // ExpandList rounds of the last cavity phase
   const bool trace = std::getenv("GDR_TRACE") != nullptr;
@@ -147,6 +150,7 @@ struct Engine {
       const std::size_t nl = collect(iter == 0 && params.check_input_boundary);  // line 4
       if (nl == 0) break;                               // line 10
       res.iterations = iter + 1;
+      idle_twice = idle >= 2;
       compute_splitting_points(nl, iter);               // line 6
       const std::size_t ns = filter(nl);                // line 7 (S1, S3)
       grow_cavities(ns);                                // line 8 (S2, S3, S5)
@@ -325,7 +329,8 @@ struct Engine {
     Ops::for_each(nl, ComputeSplittingPoints{dm.view(), crit, list.data(), cand_all.data(),
                                              0x9e3779b9u * static_cast<unsigned>(iter + 1),
                                              params.strategies.worst_first, stagnant, keep_below,
-                                             segment_failures.size() == dm.sharp.size() ? segment_failures.data() : nullptr});
+                                             segment_failures.size() == dm.sharp.size() ? segment_failures.data() : nullptr,
+                                             idle_twice});
     clock.template stop<Space>("split+locate");
   }
 
@@ -490,7 +495,7 @@ struct Engine {
                                         params.strategies.touching});
     Ops::for_each(nt, m3d::SetInCavity{mv, H.data(), failed.data(), 1});
     Ops::for_each(nt, m3d::MarkFlips{mv, cand.data(), H.data(), failed.data()});
-    Ops::for_each(nt, m3d::CheckCavity{mv, cand.data(), H.data(), failed.data(), stagnant});
+    Ops::for_each(nt, m3d::CheckCavity{mv, cand.data(), H.data(), failed.data(), idle_twice});
     Ops::for_each(nt, m3d::SetInCavity{mv, H.data(), failed.data(), 0});
   }
 
