@@ -167,26 +167,57 @@ void split_pieces_near_other_features(std::vector<double>& xyz, const std::vecto
            ends[s][1] == ends[u][1];
   };
   for (int round = 0; round < 64; ++round) {
-    // A uniform grid of the pieces' boxes, cells as long as the median piece.
+    // A uniform grid, cells as long as the median piece. Each piece is listed in the cells of
+    // points along it at most a cell apart (not its whole box: a long diagonal piece would
+    // fill a cube of cells), so a piece that meets a ball has a listed point within half a
+    // cell of it.
     std::vector<double> lengths(pieces.size());
     for (std::size_t i = 0; i < pieces.size(); ++i) lengths[i] = std::sqrt(m3d::dist2(at(pieces[i].a), at(pieces[i].b)));
     if (pieces.empty()) return;
     std::vector<double> sorted = lengths;
     std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
     const double h = std::max(sorted[sorted.size() / 2], 2 * feature_min);
-    std::map<std::array<long long, 3>, std::vector<int>> grid;
-    auto cell = [&](double x) { return static_cast<long long>(std::floor(x / h)); };
-    auto for_cells = [&](const double* lo, const double* hi, auto&& visit) {
-      for (long long i = cell(lo[0]); i <= cell(hi[0]); ++i)
-        for (long long j = cell(lo[1]); j <= cell(hi[1]); ++j)
-          for (long long k = cell(lo[2]); k <= cell(hi[2]); ++k) visit(std::array<long long, 3>{i, j, k});
+    using Cell = std::array<long long, 3>;
+    std::map<Cell, std::vector<int>> grid;
+    auto cell_of = [&](const double* x) {
+      return Cell{static_cast<long long>(std::floor(x[0] / h)), static_cast<long long>(std::floor(x[1] / h)),
+                  static_cast<long long>(std::floor(x[2] / h))};
     };
     for (std::size_t i = 0; i < pieces.size(); ++i) {
       const double *p = at(pieces[i].a), *q = at(pieces[i].b);
-      const double lo[3] = {std::min(p[0], q[0]), std::min(p[1], q[1]), std::min(p[2], q[2])};
-      const double hi[3] = {std::max(p[0], q[0]), std::max(p[1], q[1]), std::max(p[2], q[2])};
-      for_cells(lo, hi, [&](const std::array<long long, 3>& k) { grid[k].push_back(static_cast<int>(i)); });
+      const int n = static_cast<int>(std::min(std::ceil(lengths[i] / h), 1e6));
+      Cell last{};
+      for (int k = 0; k <= n; ++k) {
+        const double t = n > 0 ? double(k) / n : 0.0;
+        const double x[3] = {p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1]), p[2] + t * (q[2] - p[2])};
+        const Cell c = cell_of(x);
+        if (k > 0 && c == last) continue;
+        std::vector<int>& list = grid[c];
+        if (list.empty() || list.back() != static_cast<int>(i)) list.push_back(static_cast<int>(i));
+        last = c;
+      }
     }
+    // The cells a ball of radius r about c may meet a listed point of a piece through: its
+    // box grown by half a cell, or, when that box holds more cells than are listed, the
+    // listed cells inside it.
+    auto for_cells_near = [&](const double* c, double r, auto&& visit) {
+      const double g = r + h / 2;
+      const double lo[3] = {c[0] - g, c[1] - g, c[2] - g}, hi[3] = {c[0] + g, c[1] + g, c[2] + g};
+      const Cell a = cell_of(lo), b = cell_of(hi);
+      const double cells = double(b[0] - a[0] + 1) * double(b[1] - a[1] + 1) * double(b[2] - a[2] + 1);
+      if (cells > double(grid.size())) {
+        for (const auto& [k, list] : grid)
+          if (k[0] >= a[0] && k[0] <= b[0] && k[1] >= a[1] && k[1] <= b[1] && k[2] >= a[2] && k[2] <= b[2])
+            if (!visit(list)) return;
+        return;
+      }
+      for (long long i = a[0]; i <= b[0]; ++i)
+        for (long long j = a[1]; j <= b[1]; ++j)
+          for (long long k = a[2]; k <= b[2]; ++k) {
+            const auto found = grid.find(Cell{i, j, k});
+            if (found != grid.end() && !visit(found->second)) return;
+          }
+    };
     std::vector<Piece> next;
     next.reserve(pieces.size());
     for (std::size_t i = 0; i < pieces.size(); ++i) {
@@ -196,11 +227,8 @@ void split_pieces_near_other_features(std::vector<double>& xyz, const std::vecto
         const double *p = at(pc.a), *q = at(pc.b);
         const double c[3] = {(p[0] + q[0]) / 2, (p[1] + q[1]) / 2, (p[2] + q[2]) / 2};
         const double r = lengths[i] / 2;
-        const double lo[3] = {c[0] - r, c[1] - r, c[2] - r}, hi[3] = {c[0] + r, c[1] + r, c[2] + r};
-        for_cells(lo, hi, [&](const std::array<long long, 3>& k) {
-          const auto found = grid.find(k);
-          if (split || found == grid.end()) return;
-          for (const int j : found->second) {
+        for_cells_near(c, r, [&](const std::vector<int>& list) {
+          for (const int j : list) {
             if (touching(pc.segment, pieces[j].segment)) continue;
             // Squared distance from c to the piece j.
             const double *a = at(pieces[j].a), *b = at(pieces[j].b);
@@ -210,9 +238,10 @@ void split_pieces_near_other_features(std::vector<double>& xyz, const std::vecto
             const double x[3] = {a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2]};
             if (m3d::dist2(c, x) < r * r) {
               split = true;
-              break;
+              return false;
             }
           }
+          return true;
         });
       }
       if (!split) {
