@@ -519,3 +519,22 @@ TEST(StallDetector, ShrinkingBadVolumeIsProgress) {
   EXPECT_TRUE(c);
 }
 
+// gDP3d's end game (turnover): a few elements left that change as 3 points per iteration go
+// in, the backlog wandering between 10 and 30 and the mesh growing by under a quarter per
+// window. Progress with turnover counted; without it (gQM3d's rule) a stall. A backlog of
+// thousands with the same trickle stalls either way.
+TEST(StallDetector, TurnoverIsProgressForGdp3d) {
+  gdr::m3d::StallDetector turnover(true), plain, trickle(true);
+  bool a = false, b = false, c = false;
+  for (int i = 0; i < 200; ++i) {
+    const std::size_t backlog = 10 + (i * 7) % 21;  // 10..30, not shrinking
+    const long long points = 5000 + 3 * i;           // 120 per window of 40
+    a = a || turnover.stalled(backlog, points);
+    b = b || plain.stalled(backlog, points);
+    c = c || trickle.stalled(5000 + backlog, points);
+  }
+  EXPECT_FALSE(a);
+  EXPECT_TRUE(b);
+  EXPECT_TRUE(c);
+}
+
