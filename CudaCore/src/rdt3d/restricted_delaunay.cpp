@@ -152,6 +152,18 @@ std::vector<Piece> grade_small_angles(std::vector<double>& xyz, const std::vecto
   return pieces;
 }
 
+// Splits piece p at its midpoint (appended to xyz, its feature edge to point_segment) into
+// two pieces appended to `out`; returns the midpoint's id.
+int split_at_midpoint(std::vector<double>& xyz, const Piece& p, std::vector<int>& point_segment,
+                      std::vector<Piece>& out) {
+  const int m = static_cast<int>(xyz.size() / 3);
+  for (int k = 0; k < 3; ++k) xyz.push_back(0.5 * (xyz[3 * std::size_t(p.a) + k] + xyz[3 * std::size_t(p.b) + k]));
+  point_segment.push_back(p.segment);
+  out.push_back({p.a, m, p.segment});
+  out.push_back({m, p.b, p.segment});
+  return m;
+}
+
 // Feature edges that pass close by each other without meeting (the two sides of a slot
 // narrower than their edges are long) would each be taken away by the other's splits, and
 // refinement would block one of them, leaving the slot unresolved and the surface wrong
@@ -248,11 +260,7 @@ void split_pieces_near_other_features(std::vector<double>& xyz, const std::vecto
         next.push_back(pc);
         continue;
       }
-      const int m = static_cast<int>(xyz.size() / 3);
-      for (int k = 0; k < 3; ++k) xyz.push_back(0.5 * (xyz[3 * std::size_t(pc.a) + k] + xyz[3 * std::size_t(pc.b) + k]));
-      point_segment.push_back(pc.segment);
-      next.push_back({pc.a, m, pc.segment});
-      next.push_back({m, pc.b, pc.segment});
+      split_at_midpoint(xyz, pc, point_segment, next);
     }
     const bool done = next.size() == pieces.size();
     pieces = std::move(next);
@@ -283,11 +291,7 @@ m3d::HostTetMesh triangulate_with_features(std::vector<double>& xyz, const std::
         next.push_back(p);
         continue;
       }
-      const int m = static_cast<int>(xyz.size() / 3);
-      for (int k = 0; k < 3; ++k) xyz.push_back(0.5 * (xyz[3 * p.a + k] + xyz[3 * p.b + k]));
-      midpoint_segment.push_back(p.segment);
-      next.push_back({p.a, m, p.segment});
-      next.push_back({m, p.b, p.segment});
+      const int m = split_at_midpoint(xyz, p, midpoint_segment, next);
       const double* q = &xyz[3 * std::size_t(m)];
       for (int v : {p.a, p.b})
         if (q[0] == xyz[3 * v] && q[1] == xyz[3 * v + 1] && q[2] == xyz[3 * v + 2])
