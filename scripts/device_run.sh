@@ -3,7 +3,8 @@
 # Run from the repository root, with .device carried (made by scripts/package_device.sh):
 #   scripts/device_run.sh [TIER|CASES.txt] [--no-tests] [--tests-only] [--only SUBSTRING]
 # TIER names Benchmarks/cases_TIER.txt: quick, full, xl, large, cgal10M, ablation, crossover,
-# 3d_quick, 3d_quick_no_gqm3d, 3d_large, 3d_crossover, 3d_headline, 3d_cgal, 3d_rdt, 3d_rdt_gdr, 2d_size. --only runs the cases whose name contains SUBSTRING.
+# 3d_quick, 3d_quick_no_gqm3d, 3d_large, 3d_crossover, 3d_headline, 3d_cgal, 3d_rdt, 3d_rdt_gdr,
+# 3d_rdt_features, 2d_size. --only runs the cases whose name contains SUBSTRING.
 # Primary path: the programs prebuilt here (.device/bin, .device/tests). If .device/bin has no
 # gdr_bench, the core, its tests and gdr_bench are built there with CUDA (no CGAL, no VTK),
 # GoogleTest from .device/googletest; the CPU baselines always come prebuilt from .device/bin.

@@ -17,7 +17,9 @@ void usage() {
       << "usage: bench_cgal_mesh3 SURFACE.(off|stl) [--parallel] [--threads N]\n"
          "         [--facet-angle DEG] [--facet-size S] [--facet-distance D]\n"
          "         [--cell-radius-edge-ratio B] [--cell-size S] [--no-optimize] [--manifold]\n"
+         "         [--feature-angle DEG]\n"
          "  a bound of 0 is no bound; --no-optimize skips CGAL's perturbation and exudation;\n"
+         "  --feature-angle protects edges sharper than DEG (sampled at the facet size);\n"
          "  --manifold refines until the surface is a manifold (CGAL's manifold())\n";
 }
 
@@ -40,6 +42,7 @@ int main(int argc, char** argv) {
     else if (a == "--cell-radius-edge-ratio" && has_value)
       p.cell_radius_edge_ratio = std::atof(argv[++i]);
     else if (a == "--cell-size" && has_value) p.cell_size = std::atof(argv[++i]);
+    else if (a == "--feature-angle" && has_value) p.feature_angle = std::atof(argv[++i]);
     else if (a == "-h" || a == "--help") { usage(); return 0; }
     else if (input.empty() && a[0] != '-') input = a;
     else { usage(); return 2; }

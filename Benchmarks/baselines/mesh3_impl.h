@@ -6,7 +6,9 @@
 #include <CGAL/Mesh_criteria_3.h>
 #include <CGAL/Mesh_triangulation_3.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Mesh_polyhedron_3.h>
 #include <CGAL/Polyhedral_mesh_domain_3.h>
+#include <CGAL/Polyhedral_mesh_domain_with_features_3.h>
 #include <CGAL/Polyhedron_3.h>
 #include <CGAL/make_mesh_3.h>
 
@@ -19,13 +21,25 @@
 
 namespace gdr_bench {
 
-template <class ConcurrencyTag>
-Mesh3Result run_mesh3(const gdr::Surface& surface, const Mesh3Params& p) {
-  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-  using Polyhedron = CGAL::Polyhedron_3<K>;
-  using Domain = CGAL::Polyhedral_mesh_domain_3<Polyhedron, K>;
+using Mesh3Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+// The complex: with corners and curves for a domain with features (only such a domain names
+// their index types).
+template <class Tr, class Domain, bool kFeatures>
+struct C3t3Of {
+  using type = CGAL::Mesh_complex_3_in_triangulation_3<Tr>;
+};
+template <class Tr, class Domain>
+struct C3t3Of<Tr, Domain, true> {
+  using type = CGAL::Mesh_complex_3_in_triangulation_3<Tr, typename Domain::Corner_index, typename Domain::Curve_index>;
+};
+
+// One run with the domain type: plain, or with sharp features (detect_features(angle)).
+template <class ConcurrencyTag, class Polyhedron, class Domain, bool kFeatures>
+Mesh3Result run_mesh3_with(const gdr::Surface& surface, const Mesh3Params& p) {
+  using K = Mesh3Kernel;
   using Tr = typename CGAL::Mesh_triangulation_3<Domain, CGAL::Default, ConcurrencyTag>::type;
-  using C3t3 = CGAL::Mesh_complex_3_in_triangulation_3<Tr>;
+  using C3t3 = typename C3t3Of<Tr, Domain, kFeatures>::type;
   using Criteria = CGAL::Mesh_criteria_3<Tr>;
   using Clock = std::chrono::steady_clock;
   namespace params = CGAL::parameters;
@@ -44,14 +58,23 @@ Mesh3Result run_mesh3(const gdr::Surface& surface, const Mesh3Params& p) {
   Mesh3Result r;
   const auto t0 = Clock::now();
   Domain domain(polyhedron);
+  if constexpr (kFeatures) domain.detect_features(p.feature_angle);
   r.domain_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
 
   // A zero bound means "no bound" in gdr's parameters; CGAL spells that by leaving it out.
-  Criteria criteria(params::facet_angle = p.facet_angle,
-                    params::facet_size = p.facet_size,
-                    params::facet_distance = p.facet_distance,
-                    params::cell_radius_edge_ratio = p.cell_radius_edge_ratio,
-                    params::cell_size = p.cell_size);
+  // Features are sampled at the facet size, as gdr rdt samples them.
+  const Criteria criteria = [&] {
+    if constexpr (kFeatures)
+      return Criteria(params::edge_size = p.facet_size, params::facet_angle = p.facet_angle,
+                      params::facet_size = p.facet_size, params::facet_distance = p.facet_distance,
+                      params::cell_radius_edge_ratio = p.cell_radius_edge_ratio,
+                      params::cell_size = p.cell_size);
+    else
+      return Criteria(params::facet_angle = p.facet_angle, params::facet_size = p.facet_size,
+                      params::facet_distance = p.facet_distance,
+                      params::cell_radius_edge_ratio = p.cell_radius_edge_ratio,
+                      params::cell_size = p.cell_size);
+  }();
 
   const auto t1 = Clock::now();
   const auto topology = p.manifold ? params::manifold() : params::non_manifold();
@@ -74,6 +97,19 @@ Mesh3Result run_mesh3(const gdr::Surface& surface, const Mesh3Params& p) {
   r.max_radius_edge = q.max_radius_edge;
   r.volume = q.volume;
   return r;
+}
+
+template <class ConcurrencyTag>
+Mesh3Result run_mesh3(const gdr::Surface& surface, const Mesh3Params& p) {
+  using K = Mesh3Kernel;
+  if (p.feature_angle > 0) {
+    using Polyhedron = typename CGAL::Mesh_polyhedron_3<K>::type;
+    return run_mesh3_with<ConcurrencyTag, Polyhedron, CGAL::Polyhedral_mesh_domain_with_features_3<K>, true>(
+        surface, p);
+  }
+  using Polyhedron = CGAL::Polyhedron_3<K>;
+  return run_mesh3_with<ConcurrencyTag, Polyhedron, CGAL::Polyhedral_mesh_domain_3<Polyhedron, K>, false>(surface,
+                                                                                                          p);
 }
 
 }  // namespace gdr_bench

@@ -13,6 +13,8 @@ struct Mesh3Params {
   double cell_radius_edge_ratio = 3, cell_size = 0;
   bool optimize = true;  // CGAL's default perturbation and exudation after refinement
   bool manifold = false;  // CGAL's manifold() topological criterion (gdr rdt's default)
+  double feature_angle = 0;  // > 0: sharp edges detected at this angle are protected
+                             // (Polyhedral_mesh_domain_with_features_3, edge size = facet size)
   int threads = 0;       // parallel only; 0 = all cores
 };
 

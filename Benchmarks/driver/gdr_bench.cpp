@@ -208,7 +208,7 @@ Result run_baseline(const Case& c, Inputs& inputs, const Settings& s, double max
       argv.insert(argv.end(), {"--threads", c.text("threads", "0")});
     }
     for (const char* key : {"facet_angle", "facet_size", "facet_distance",
-                            "cell_radius_edge_ratio", "cell_size"}) {
+                            "cell_radius_edge_ratio", "cell_size", "feature_angle"}) {
       if (c.params.count(key)) {
         std::string flag = std::string("--") + key;
         std::replace(flag.begin(), flag.end(), '_', '-');

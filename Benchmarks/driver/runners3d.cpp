@@ -220,7 +220,8 @@ Result run_gdr_tet(const Case& c, Inputs& inputs, const TetBounds& b, bool valid
 }
 
 // gDP3d with CGAL Mesh_3's criteria, as the case names them for cgal-mesh3-* (facet_angle,
-// facet_size, facet_distance, cell_radius_edge_ratio, cell_size; absent: our defaults).
+// facet_size, facet_distance, cell_radius_edge_ratio, cell_size, feature_angle; absent: our
+// defaults).
 // Elements are the tetrahedra inside the surface; the message gives the surface triangles
 // and their smallest angle. validate=1 checks the surface (closed, oriented, manifold, no
 // self-intersection) and the tetrahedra (positive, bounded by it).
@@ -234,6 +235,7 @@ Result run_gdr_rdt(const Case& c, Inputs& inputs, bool validate) {
   o.cell_radius_edge_ratio = c.number("cell_radius_edge_ratio", o.cell_radius_edge_ratio);
   o.cell_size = c.number("cell_size", o.cell_size);
   o.sliver_angle = c.number("sliver_angle", 0);  // CGAL's optimisers are off too (optimize=0)
+  o.feature_angle = c.number("feature_angle", 0);
   o.backend = c.runner == "gdr-rdt-gpu" ? gdr::Backend::Gpu : gdr::Backend::Cpu;
   const double timeout = c.number("timeout", 600);
   const auto start = std::chrono::steady_clock::now();
@@ -266,6 +268,9 @@ Result run_gdr_rdt(const Case& c, Inputs& inputs, bool validate) {
   std::ostringstream msg;
   msg << s.output_triangles << " surface triangles, smallest facet angle " << s.min_facet_angle_deg
       << " deg, " << s.bad_facets << " bad facets. ";
+  if (o.feature_angle > 0)
+    msg << s.feature_edges << " feature edges, " << s.corners << " corners, " << s.feature_points
+        << " points on features. ";
   if (s.stalled) msg << "refinement stalled. ";
   if (s.steiner_cap_reached) msg << "Steiner cap (" << s.steiner_cap << ") reached. ";
   if (o.sliver_angle > 0)
