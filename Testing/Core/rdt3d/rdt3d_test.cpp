@@ -360,24 +360,6 @@ TEST_P(RestrictedDelaunayOnBackend, SharedDataSurfaces) {
   }
 }
 
-// A CAD part of the shared data set (thingi10k_65778: 128 corners, 288 sharp input edges)
-// with --feature-angle 30: every check holds, features included, and the volume is the
-// input's up to rounding. fandisk.off passes `gdr rdt --feature-angle 30 --check` too (5-18 s
-// on the shared 2-core box, too long for CI).
-// Sharp features are refused on the GPU backend for now (restricted_delaunay.cpp says why):
-// true, after checking the refusal, when the test runs there.
-bool refused_on_gpu(const Surface& s, const RestrictedDelaunayOptions& o) {
-  if (o.backend != Backend::Gpu || std::getenv("GDR_GPU_FEATURES")) return false;
-  try {
-    restricted_delaunay_3d(s, o, {});
-    ADD_FAILURE() << "sharp features on the GPU were not refused";
-  } catch (const Error& e) {
-    EXPECT_EQ(e.status(), Status::InvalidInput);
-    EXPECT_NE(std::string(e.what()).find("GPU backend"), std::string::npos) << e.what();
-  }
-  return true;
-}
-
 // The CAD part of ../shared/data (dyadic coordinates, sharp edges), and default options that
 // keep the whole triangulation for the checks.
 std::filesystem::path cad_part() {
@@ -390,13 +372,16 @@ RestrictedDelaunayOptions keeping_triangulation(Backend backend) {
   return o;
 }
 
+// A CAD part of the shared data set (thingi10k_65778: 128 corners, 288 sharp input edges)
+// with --feature-angle 30: every check holds, features included, and the volume is the
+// input's up to rounding. fandisk.off passes `gdr rdt --feature-angle 30 --check` too (5-18 s
+// on the shared 2-core box, too long for CI).
 TEST_P(RestrictedDelaunayOnBackend, CadPartKeepsItsFeatures) {
   const std::filesystem::path file = cad_part();
   if (!std::filesystem::exists(file)) GTEST_SKIP() << file << " is absent (no ../shared here)";
   const Surface s = io::read_surface(file.string());
   RestrictedDelaunayOptions o = keeping_triangulation(GetParam());
   o.feature_angle = 30;
-  if (refused_on_gpu(s, o)) return;
   // Its blocks stand 2 apart, the slots between them narrower than its edges are long: the
   // slots' feature edges are split before refinement (blocked subsegments left the slots
   // unresolved) and refinement is not stopped while points keep going in (it was, in about 1
@@ -426,7 +411,6 @@ TEST_P(RestrictedDelaunayOnBackend, FeaturesOffTheSurfaceAreReported) {
   const Surface s = io::read_surface(file.string());
   RestrictedDelaunayOptions o = keeping_triangulation(GetParam());
   o.feature_angle = 30;
-  if (refused_on_gpu(s, o)) return;
   std::string warnings;
   Callbacks cb;
   cb.warning = [&](const std::string& w) { warnings += w + "\n"; };
@@ -492,7 +476,6 @@ TEST_P(RestrictedDelaunayOnBackend, CubeKeepsItsEdgesAndCorners) {
   const RestrictedDelaunayResult rounded = restricted_delaunay_3d(s, o, {});
   expect_valid(rounded, s, true, true);
   o.feature_angle = 30;
-  if (refused_on_gpu(s, o)) return;
   const RestrictedDelaunayResult r = restricted_delaunay_3d(s, o, {});
   expect_valid(r, s, true, true);
   EXPECT_EQ(r.stats.feature_edges, 12);
@@ -528,7 +511,6 @@ TEST_P(RestrictedDelaunayOnBackend, OpenHemisphereKeepsItsBoundary) {
   RestrictedDelaunayOptions o = sizes(GetParam(), 0.15, 0.015, 0.15);
   const RestrictedDelaunayResult plain = restricted_delaunay_3d(s, o, {});
   o.feature_angle = 30;
-  if (refused_on_gpu(s, o)) return;
   const RestrictedDelaunayResult r = restricted_delaunay_3d(s, o, {});
   expect_valid(r, s, false, false);
   EXPECT_GT(r.stats.feature_edges, 0);
@@ -556,7 +538,6 @@ TEST_P(RestrictedDelaunayOnBackend, InputSegmentsAreFeatures) {
   Surface s = test::unit_cube();
   for (Point3& p : s.points) p = rot.apply(p);
   s.segments = {{4, 5}, {5, 7}, {7, 6}, {6, 4}};  // z = 1 (test::add_box numbers corners by bits)
-  if (refused_on_gpu(s, sizes(GetParam(), 0.2, 0.02, 0.2))) return;
   const RestrictedDelaunayResult r = restricted_delaunay_3d(s, sizes(GetParam(), 0.2, 0.02, 0.2), {});
   expect_valid(r, s, true, true);
   EXPECT_EQ(r.stats.feature_edges, 4);
@@ -606,7 +587,6 @@ TEST_P(RestrictedDelaunayOnBackend, ThinWedgeTerminatesWithExceptions) {
   s.triangles = {{0, 2, 1}, {3, 4, 5}, {0, 1, 4}, {0, 4, 3}, {1, 2, 5}, {1, 5, 4}, {2, 0, 3}, {2, 3, 5}};
   RestrictedDelaunayOptions o = sizes(GetParam(), 0.1, 0.01, 0.1);
   o.feature_angle = 30;
-  if (refused_on_gpu(s, o)) return;
   const RestrictedDelaunayResult r = restricted_delaunay_3d(s, o, {});
   EXPECT_EQ(r.stats.feature_edges, 9);
   EXPECT_EQ(r.stats.corners, 6);
