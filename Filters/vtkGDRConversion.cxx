@@ -543,6 +543,8 @@ void vtkGDRConversion::AddStats(const gdr::QualityTetStats& stats, vtkFieldData*
   AddValue<vtkIdTypeArray>(
     fd, "DuplicateTrianglesMerged", static_cast<vtkIdType>(stats.duplicate_triangles_merged));
   AddValue<vtkIdTypeArray>(
+    fd, "PresplitPoints", static_cast<vtkIdType>(stats.presplit_points));
+  AddValue<vtkIdTypeArray>(
     fd, "CDTSteinerPoints", static_cast<vtkIdType>(stats.cdt_steiner_points));
   AddValue<vtkIdTypeArray>(fd, "InteriorSeeds", static_cast<vtkIdType>(stats.interior_seeds));
   AddValue<vtkIdTypeArray>(fd, "BlockedSegments", static_cast<vtkIdType>(stats.blocked_segments));

@@ -189,6 +189,7 @@ void print_summary(const ArgsTet& a, const Surface& input, const QualityTetResul
                           with_commas(s.output_tets) + " tetrahedra, " +
                           with_commas(s.output_subfaces) + " subfaces"});
   info.row({"Steiner points", with_commas(s.steiner_points) + " (" +
+                                  (s.presplit_points > 0 ? with_commas(s.presplit_points) + " on close segments, " : "") +
                                   with_commas(s.cdt_steiner_points) + " in the CDT, " +
                                   with_commas(s.interior_seeds) + " interior seeds) in " +
                                   std::to_string(s.iterations) + " iterations"});
@@ -278,6 +279,7 @@ void write_stats_json(const std::string& path, const ArgsTet& a, const QualityTe
   j.field("input_segments", s.input_segments);
   j.field("duplicate_points_merged", s.duplicate_points_merged);
   j.field("duplicate_triangles_merged", s.duplicate_triangles_merged);
+  j.field("presplit_points", s.presplit_points);
   j.field("cdt_steiner_points", s.cdt_steiner_points);
   j.field("interior_seeds", s.interior_seeds);
   j.field("steiner_points", s.steiner_points);

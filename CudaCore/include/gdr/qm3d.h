@@ -68,6 +68,7 @@ struct QualityTetStats {
   // The coplanar_angle in effect: the option's, or kTetGenFacetTolerance after TetGen
   // stopped on an assertion (validate with ValidateOptions::facet_bend_deg when > 0).
   double coplanar_angle_used = 0;
+  long long presplit_points = 0;        // on segments that would wait on each other, before the CDT
   long long cdt_steiner_points = 0;     // added by the initial CDT (boundary recovery)
   long long interior_seeds = 0;         // lattice points put inside with the CDT (cdt3d.h)
   long long steiner_points = 0;         // added in total (CDT and refinement)

@@ -103,6 +103,16 @@ class TetGenAborted : public Error {
 // initial triangulation. Throws Error when TetGen fails (e.g. all points coplanar).
 m3d::HostTetMesh delaunay_tetrahedralization(const std::vector<double>& xyz);
 
+// Two segments (not nearly flat, sharing no endpoint) each of whose midpoints lies in the
+// other's diametral sphere wait on each other in refinement: the point that splits one
+// encroaches the other, and where it sees a subface beside the other from behind (the
+// generators of a bore, a few degrees apart and longer than twice their distance), no
+// constrained Delaunay tetrahedralization with it exists until the other is split too.
+// Such segments are split at their midpoints, with the triangles beside them, for up to
+// `max_rounds` rounds, before the CDT (TetGen resolves what the new points need). Returns
+// the points added (presplit.cpp).
+int split_mutually_encroaching_segments(Plc& plc, int max_rounds);
+
 // Interior seeds (seeds.cpp): x, y, z of points of a lattice over the PLC's bounding box,
 // of spacing h = `spacing_factor` times the mean triangle edge length next to the surface
 // and coarser deeper in, that lie at least h/2 from every triangle and are not connected to

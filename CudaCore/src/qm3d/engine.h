@@ -36,6 +36,7 @@ struct Strategies {
   bool interior_seeds = true;  // a graded lattice inside goes into the CDT (cdt3d/seeds.cpp)
   bool blocking = true;        // segments whose splits keep failing are left as they are (Engine)
   bool acute_vertices = true;  // protecting balls at acute vertices too (qm3d/features.h)
+  bool segment_presplit = true;  // segments that would wait on each other split before the CDT
 };
 
 struct EngineParams {

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <map>
+#include <set>
 
 #include <chrono>
 #include <cmath>
@@ -33,6 +34,7 @@ using cdt3d::TetGenAborted;
 using test::add_box;
 using test::cube_with_rough_top;
 using test::polygon_prism;
+using test::turned_bushing;
 using test::unit_cube;
 
 // The error check_surface throws for `s` (status and message); fails the test if none.
@@ -112,6 +114,43 @@ m3d::HostTetMesh checked_cdt(const Plc& plc, bool validate = true, const std::ve
 }
 
 // ---- Bad inputs: one error class each, naming the items -----------------------------------
+
+// Segments that would wait on each other in refinement (the sides of a 12-sided bore, 3.4
+// times longer than their spacing) are split at their midpoints before the CDT, with the
+// triangles beside them: afterwards none is left (a second call adds nothing), the surface
+// encloses the same volume with the same facets, each new point is its segment's midpoint,
+// and the CDT holds every piece. A convex prism's sides, as close and as long, do not wait
+// (their split points see no subface from behind): none is split there.
+TEST(Presplit, BoreSidesAreSplitUntilNoneWaits) {
+  const Surface s = turned_bushing(12, 3.0);
+  Plc plc = check_surface(s);
+  const Plc before = plc;
+  const int added = cdt3d::split_mutually_encroaching_segments(plc, 8);
+  EXPECT_GT(added, 0);
+  EXPECT_EQ(static_cast<int>(plc.points.size()), static_cast<int>(before.points.size()) + added);
+  EXPECT_EQ(plc.segments.size(), before.segments.size() + static_cast<std::size_t>(added));
+  EXPECT_EQ(cdt3d::split_mutually_encroaching_segments(plc, 8), 0);
+  double area_before = 0, area_after = 0;
+  const auto area = [](const Plc& p, std::size_t t) {
+    const Point3 &a = p.points[p.triangles[t][0]], &b = p.points[p.triangles[t][1]], &c = p.points[p.triangles[t][2]];
+    const double u[3] = {b.x - a.x, b.y - a.y, b.z - a.z}, v[3] = {c.x - a.x, c.y - a.y, c.z - a.z};
+    return 0.5 * std::sqrt(std::pow(u[1] * v[2] - u[2] * v[1], 2) + std::pow(u[2] * v[0] - u[0] * v[2], 2) +
+                           std::pow(u[0] * v[1] - u[1] * v[0], 2));
+  };
+  for (std::size_t t = 0; t < before.triangles.size(); ++t) area_before += area(before, t);
+  for (std::size_t t = 0; t < plc.triangles.size(); ++t) area_after += area(plc, t);
+  EXPECT_NEAR(area_after, area_before, 1e-12 * area_before);
+  EXPECT_EQ(plc.triangle_facet.size(), plc.triangles.size());
+  EXPECT_EQ(plc.triangle_cell.size(), plc.triangles.size());
+  std::set<int> facets(plc.triangle_facet.begin(), plc.triangle_facet.end());
+  EXPECT_EQ(facets.size(), before.facet_origin.size());
+  checked_cdt(plc);
+
+  Surface tall = polygon_prism(12);  // sides 0.52 apart, 3 long: each midpoint encroaches its neighbours
+  for (Point3& q : tall.points) q.z *= 3;
+  Plc prism = check_surface(tall);
+  EXPECT_EQ(cdt3d::split_mutually_encroaching_segments(prism, 8), 0);
+}
 
 TEST(CheckSurface, NonFiniteCoordinates) {
   Surface s = unit_cube();

@@ -149,6 +149,32 @@ inline Surface icosphere(int levels, double r = 1, Point3 c = {0, 0, 0}) {
   return s;
 }
 
+// A part turned on a lathe with a polygonal bore: `sectors` faces around, the bundled
+// bushing's profile with the hub `height` tall, coordinates rounded to 9 decimals as
+// make_bushing.py does (32 sectors, height 1.2: apps/gdr/examples/bushing.off). Closed,
+// outward-facing.
+inline Surface turned_bushing(int sectors, double height) {
+  const double profile[7][2] = {{0.5, 0.0}, {2.0, 0.0}, {2.0, 0.3}, {1.0, 0.3},
+                                {1.0, height - 0.1}, {0.9, height}, {0.5, height}};
+  Surface s;
+  for (const auto& rz : profile)
+    for (int k = 0; k < sectors; ++k) {
+      const double a = 2 * 3.14159265358979323846 * k / sectors;
+      const auto nine = [](double v) { return std::round(v * 1e9) / 1e9; };  // as make_bushing.py
+      s.points.push_back({nine(rz[0] * std::cos(a)), nine(rz[0] * std::sin(a)), rz[1]});
+    }
+  for (int i = 0; i < 7; ++i) {
+    const int j = (i + 1) % 7;
+    for (int k = 0; k < sectors; ++k) {
+      const int t = (k + 1) % sectors;
+      const int a = i * sectors + k, b = i * sectors + t, c = j * sectors + t, d = j * sectors + k;
+      s.triangles.push_back({a, c, d});
+      s.triangles.push_back({a, b, c});
+    }
+  }
+  return s;
+}
+
 // Appends surface b to a (renumbering b's vertices).
 inline void append(Surface& a, const Surface& b) {
   const int n = static_cast<int>(a.points.size());
