@@ -2,6 +2,7 @@
 // and compiled by nvcc for the GPU and by g++ (OpenMP) for the CPU.
 #pragma once
 #include <cstdint>
+#include <cstring>
 
 #if defined(__CUDACC__)
 #define GDR_HD __host__ __device__
@@ -98,6 +99,18 @@ GDR_HD_INLINE int atomic_max(int* addr, int v) {
 template <class T>
 GDR_HD_INLINE T volatile_load(const T* addr) {
   return *static_cast<const volatile T*>(addr);
+}
+
+// The bits of a double: for values >= 0 their order is the values' order (so atomic_max of
+// ~bits_of(v) keeps the least v).
+GDR_HD_INLINE u64 bits_of(double v) {
+#if defined(__CUDA_ARCH__)
+  return static_cast<u64>(__double_as_longlong(v));
+#else
+  u64 b;
+  std::memcpy(&b, &v, sizeof b);
+  return b;
+#endif
 }
 
 template <class T>

@@ -36,6 +36,7 @@ struct SmoothParams {
 
 struct SmoothResult {
   long long slivers_before = 0, slivers_after = 0;  // tetrahedra below the target
+  double min_sine_before = 1, min_sine_after = 1;   // the least dihedral sine there
   long long moves = 0;                              // vertex moves accepted
   int rounds = 0;
 };
@@ -241,6 +242,7 @@ SmoothResult smooth_slivers(DeviceTetMesh<Space>& mesh, const SmoothParams& sp, 
   using Ops = exec::Ops<Space>;
   SmoothResult res;
   exec::Buffer<Space, int> vtet, cands, scratch, moved, pinned;
+  exec::Buffer<Space, exec::u64> least(1);  // ~bits of the least dihedral sine counted
   vtet.resize_discard(mesh.npts);
   const double target = sp.target_sin;
   // Vertices of tetrahedra outside the scope's stars stay (their tetrahedra do not change).
@@ -256,6 +258,8 @@ SmoothResult smooth_slivers(DeviceTetMesh<Space>& mesh, const SmoothParams& sp, 
       for (int k = 0; k < 4; ++k) exec::atomic_or(&pin[m.tv[4 * t + k]], 1);
     });
   }
+  // Also the least sine (min_sine): moves raise their star's least sine, so it never falls.
+  double min_sine = 1;
   auto count_slivers = [&]() {
     const TetView m = mesh.view();
     int* vt = vtet.data();
@@ -263,19 +267,28 @@ SmoothResult smooth_slivers(DeviceTetMesh<Space>& mesh, const SmoothParams& sp, 
     scratch.resize_discard(mesh.ntet);
     int* sl = scratch.data();
     const int* pn = pin;
+    least.zero();
+    exec::u64* lst = least.data();
     Ops::for_each(mesh.ntet, [=] GDR_HD(long long i) {
       const int t = static_cast<int>(i);
       sl[t] = 0;
       if ((m.tflag[t] & kDead) || !scope.counts(m, t)) return;
       const int* q = m.tv + 4 * t;
-      if (!(min_dihedral_sine(pt(m, q[0]), pt(m, q[1]), pt(m, q[2]), pt(m, q[3])) < target)) return;
+      const double s = min_dihedral_sine(pt(m, q[0]), pt(m, q[1]), pt(m, q[2]), pt(m, q[3]));
+      const exec::u64 key = ~exec::bits_of(s > 0 ? s : 0.0);
+      if (key > exec::volatile_load(lst)) exec::atomic_max(lst, key);
+      if (!(s < target)) return;
       sl[t] = 1;
       for (int k = 0; k < 4; ++k)
         if (m.ptype[q[k]] == kFreePoint && !(pn && pn[q[k]])) exec::atomic_cas(&vt[q[k]], -1, t);
     });
+    const exec::u64 b = ~least.get(0);
+    std::memcpy(&min_sine, &b, sizeof b);
+    if (least.get(0) == 0) min_sine = 1;  // nothing counted
     return Ops::exclusive_scan(sl, sl, mesh.ntet);
   };
   res.slivers_before = count_slivers();
+  res.min_sine_before = min_sine;
   long long slivers = res.slivers_before;
   mesh.mark.zero();
   for (int round = 0; round < sp.max_rounds && slivers > 0; ++round) {
@@ -318,6 +331,7 @@ SmoothResult smooth_slivers(DeviceTetMesh<Space>& mesh, const SmoothParams& sp, 
     if (nmoved * 50 < static_cast<long long>(nc) || 100 * (was - slivers) < was) break;
   }
   res.slivers_after = slivers;
+  res.min_sine_after = min_sine;
   return res;
 }
 

@@ -11,18 +11,8 @@
 
 namespace gdr::r2d {
 
+using exec::bits_of;
 using exec::u64;
-
-// The bits of a double: for values >= 0 their order is the values' order.
-GDR_HD_INLINE u64 bits_of(double v) {
-#if defined(__CUDA_ARCH__)
-  return static_cast<u64>(__double_as_longlong(v));
-#else
-  u64 b;
-  std::memcpy(&b, &v, sizeof b);
-  return b;
-#endif
-}
 
 GDR_HD_INLINE int next3(int i) { return i == 2 ? 0 : i + 1; }
 GDR_HD_INLINE int prev3(int i) { return i == 0 ? 2 : i - 1; }

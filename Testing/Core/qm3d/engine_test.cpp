@@ -211,8 +211,8 @@ TEST(SliverSmoothing, DihedralSineMatchesTheAngles) {
 }
 
 // Refinement with the sliver pass: the mesh stays valid, conforming and of the same volume,
-// the radius-edge bound still holds, and fewer tetrahedra have an angle beyond the target
-// (the smallest angle does not get worse) than the same refinement without it.
+// the radius-edge bound still holds, fewer tetrahedra have an angle beyond the target than
+// the same refinement without it, and the pass does not make the smallest angle worse.
 TEST(SliverSmoothing, RaisesSmallDihedralAnglesKeepingTheBounds) {
   const double target = 15.0;
   for (auto backend : backends()) {
@@ -246,7 +246,12 @@ TEST(SliverSmoothing, RaisesSmallDihedralAnglesKeepingTheBounds) {
     EXPECT_EQ(er.slivers.slivers_after, below(after));  // the report counts what is there
     EXPECT_LT(er.slivers.slivers_after, er.slivers.slivers_before / 2);
     EXPECT_LT(below(after), below(before) / 2);
-    EXPECT_GE(*std::min_element(after.begin(), after.end()), *std::min_element(before.begin(), before.end()));
+    // The smallest angle does not get worse, in the same run: the run without the pass is
+    // another mesh on many threads (on 16 CPU threads one's smallest angle was 0.42 degrees
+    // after the pass, the other's 1.69 without it).
+    EXPECT_GE(er.slivers.min_sine_after, er.slivers.min_sine_before);
+    EXPECT_NEAR(er.slivers.min_sine_after,
+                std::sin(*std::min_element(after.begin(), after.end()) * M_PI / 180), 1e-6);
   }
 }
 
