@@ -209,10 +209,13 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
   // 10% of TetGen's counts (2026-11-28, CPU).
   std::size_t input_points = 0;
   const auto presplit = [&] {
+    const auto t_split = Clock::now();
     input_points = plc.points.size();
     st.presplit_points = strategies.segment_presplit && options.refine
                              ? cdt3d::split_mutually_encroaching_segments(plc, kPresplitRounds)
                              : 0;
+    if (std::getenv("GDR_TRACE"))
+      std::fprintf(stderr, "gdr-trace presplit: %lld points, %.3f s\n", st.presplit_points, since(t_split));
   };
   presplit();
   const auto cdt = [&](double min_cells = 0) {
