@@ -15,6 +15,7 @@
 #include <unordered_map>
 
 #include "bench.h"
+#include "cdt3d/surfaces.h"
 #include "gdr/error.h"
 #include "gdr/io.h"
 
@@ -133,7 +134,8 @@ gdr::Surface bumpy_torus(double triangles, double bump) {
 }  // namespace
 
 bool is_surface_spec(const std::string& input) {
-  return input.rfind("gen:surface:", 0) == 0 || input.rfind("gen:torus:", 0) == 0;
+  return input.rfind("gen:surface:", 0) == 0 || input.rfind("gen:torus:", 0) == 0 ||
+         input.rfind("gen:lathe:", 0) == 0;
 }
 
 gdr::Surface generate_surface(const std::string& spec, const std::string& data_dir) {
@@ -177,8 +179,16 @@ gdr::Surface generate_surface(const std::string& spec, const std::string& data_d
                        "'" + spec + "': need 96 <= triangles <= 1e8 and 0 <= bump <= 0.5");
     return bumpy_torus(n, bump);
   }
+  if (kind == "lathe") {  // the bundled bushing's profile with a polygonal bore (tests' turned_bushing)
+    refuse_unknown({"sectors", "height"});
+    const double n = spec_number(parts, "sectors", 32, spec);
+    const double h = spec_number(parts, "height", 1.2, spec);
+    if (!(n >= 3 && n <= 1e5 && n == std::floor(n)) || !(h >= 0.4 && h <= 1e3))
+      throw gdr::Error(gdr::Status::InvalidInput, "'" + spec + "': need 3 <= sectors (an integer) and height >= 0.4");
+    return gdr::test::turned_bushing(static_cast<int>(n), h);
+  }
   throw gdr::Error(gdr::Status::InvalidInput,
-                   "unknown surface generator '" + kind + "' in '" + spec + "' (known: surface, torus)");
+                   "unknown surface generator '" + kind + "' in '" + spec + "' (known: surface, torus, lathe)");
 }
 
 void write_off(const std::string& path, const gdr::Surface& s) {

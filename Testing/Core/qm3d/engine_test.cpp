@@ -490,7 +490,8 @@ TEST(QualityTetMesh, StalledCoarsePartIsRedoneWithInteriorSeeds) {
 // stalled with 0.26-0.43% of the volume bad, making up to 4x the tetrahedra of TetGen 1.5
 // (12 sides: 3,962 against 959; 16 sides, hub 3 tall: 4,112 against 2,610). With the
 // waiting segments split first none is bad, and the counts here are 1,012, 920, 2,485 and
-// 2,172 (TetGen 1.5's library: stops on an assertion, 959, 2,610, 1,957).
+// 2,172 (TetGen 1.5's library: 853, 972 and 2,579 for the first three, gdr_bench gen:lathe;
+// on make_bushing.py's file of the 8-sided part it stopped on an assertion).
 TEST(QualityTetMesh, PolygonalBoresMeshLikeTetGen) {
   const struct {
     int sectors;
