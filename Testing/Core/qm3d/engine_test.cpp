@@ -487,8 +487,8 @@ TEST(QualityTetMesh, StalledCoarsePartIsRedoneWithInteriorSeeds) {
 
 // Polygonal bores of 8 to 24 sides, bends of 45 to 15 degrees between their faces (below 10
 // the segments count as nearly flat and are left to blocking). At B = 1.4 refinement had
-// stalled with 0.26-0.43% of the volume bad, making up to 4x the tetrahedra of TetGen 1.5
-// (12 sides: 3,962 against 959; 16 sides, hub 3 tall: 4,112 against 2,610). With the
+// stalled with up to 0.41% of the volume bad, making up to 4x the tetrahedra of TetGen 1.5
+// (12 sides: 3,982 against 972; 16 sides, hub 3 tall: 4,109 against 2,579). With the
 // waiting segments split first none is bad, and the counts here are 1,012, 920, 2,485 and
 // 2,172 (TetGen 1.5's library: 853, 972 and 2,579 for the first three, gdr_bench gen:lathe;
 // on make_bushing.py's file of the 8-sided part it stopped on an assertion).
