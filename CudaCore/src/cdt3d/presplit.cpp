@@ -1,6 +1,7 @@
 // Segments split before the CDT where two of them would wait on each other (cdt3d.h,
 // split_mutually_encroaching_segments).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <unordered_map>
@@ -22,18 +23,10 @@ Point3 midpoint(const Point3& a, const Point3& b) {
   return {0.5 * (a.x + b.x), 0.5 * (a.y + b.y), 0.5 * (a.z + b.z)};
 }
 
-// Pairs of segments (not nearly flat, sharing no endpoint) each of whose midpoints lies in
-// the other's diametral sphere. Their midpoints are then less than half the shorter one's
-// length apart: segments are bucketed by length in powers of two, each level's midpoints in
-// a grid of cells as large as its shortest length, and each segment looks for partners at
-// least as long as itself in the 27 cells around its midpoint, level by level.
+// The triangles at each edge, by edge_key.
 using EdgeTriangles = std::unordered_multimap<std::uint64_t, int>;
 
-// Does segment b lie on a facet that segment a bounds too, and does a's midpoint lie strictly
-// outside the domain across the plane of a triangle at b on another facet? Then the split
-// point of a sees that triangle's subfaces from behind through the material beside the
-// shared facet (the next face of a bore), and each split waits for the other. Across a gap
-// (two blocks' facing walls) the material does not join them there, and they do not wait.
+// The unit normal of triangle t (its corners' order).
 Point3 unit_normal(const Plc& plc, int t) {
   const auto& q = plc.triangles[t];
   const Point3 &a = plc.points[q[0]], &b = plc.points[q[1]], &c = plc.points[q[2]];
@@ -87,6 +80,11 @@ bool waits_across_a_bend(const Plc& plc, const EdgeTriangles& by_edge, int a, in
   return false;
 }
 
+// Pairs of segments (not nearly flat, sharing no endpoint) each of whose midpoints lies in
+// the other's diametral sphere. Their midpoints are then less than half the shorter one's
+// length apart: segments are bucketed by length in powers of two, each level's midpoints in
+// a grid of cells as large as its shortest length, and each segment looks for partners at
+// least as long as itself in the 27 cells around its midpoint, level by level.
 std::vector<std::array<int, 2>> mutually_encroaching(const Plc& plc) {
   const std::size_t ns = plc.segments.size();
   std::vector<std::array<int, 2>> pairs;
