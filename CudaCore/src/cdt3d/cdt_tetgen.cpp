@@ -122,11 +122,6 @@ void restore_order(const std::vector<int>& order, tetgenio& out) {
   renumber(out.trifacelist, 3 * static_cast<std::size_t>(out.numberoftrifaces));
 }
 
-std::uint64_t edge_key(int a, int b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
-}
-
 // A triangle's corners, sorted, as a hash key.
 struct FaceKey {
   int v[3];

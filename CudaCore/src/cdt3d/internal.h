@@ -2,6 +2,7 @@
 #pragma once
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <numeric>
 #include <string>
 #include <vector>
@@ -10,6 +11,12 @@
 #include "gdr/pslg.h"
 
 namespace gdr::cdt3d {
+
+// An undirected edge's key: its two point numbers, smaller first.
+inline std::uint64_t edge_key(int a, int b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+}
 
 // Disjoint sets of 0..n-1; the representative of a set is its smallest member.
 struct UnionFind {

@@ -9,15 +9,11 @@
 #include <vector>
 
 #include "cdt3d/cdt3d.h"
+#include "cdt3d/internal.h"
 #include "predicates/predicates.h"
 
 namespace gdr::cdt3d {
 namespace {
-
-std::uint64_t edge_key(int a, int b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
-}
 
 Point3 midpoint(const Point3& a, const Point3& b) {
   return {0.5 * (a.x + b.x), 0.5 * (a.y + b.y), 0.5 * (a.z + b.z)};
