@@ -35,6 +35,7 @@ struct Strategies {
   bool work_list = true;     // CPU: collect from the last list and the changed triangles
   bool cdt_assembly = true;  // the parallel CDT assembled where it ran (cdt_assembly.h), not on the host
   bool one_at_a_time = true; // CPU on few threads: points inserted one at a time (Engine::one_at_a_time)
+  bool petal_sinks = true;   // off-centres: larger empty circles in the petal first (kernels.h, move_to_petal_sink)
 };
 
 struct EngineParams {

@@ -106,7 +106,7 @@ bool segments_meet_below(const r2d::CleanPslg& g, double angle) {
   return below;
 }
 
-// Design strategies switched off for a measurement: GDR_DISABLE=s1,s3,s4,s5,touching,block_rounds,grid_rounds,worst_first,graded,work_list,cdt_assembly,one_at_a_time
+// Design strategies switched off for a measurement: GDR_DISABLE=s1,s3,s4,s5,touching,block_rounds,grid_rounds,worst_first,graded,work_list,cdt_assembly,one_at_a_time,petal_sinks
 // (benchmarks only; see Benchmarks/README.md).
 r2d::Strategies strategies_from_environment() {
   r2d::Strategies s;
@@ -124,10 +124,11 @@ r2d::Strategies strategies_from_environment() {
         else if (name == "work_list") s.work_list = false;
         else if (name == "cdt_assembly") s.cdt_assembly = false;
         else if (name == "one_at_a_time") s.one_at_a_time = false;
+        else if (name == "petal_sinks") s.petal_sinks = false;
         else return false;
         return true;
       },
-      "s1, s3, s4, s5, touching, block_rounds, grid_rounds, worst_first, graded, work_list, cdt_assembly, one_at_a_time");
+      "s1, s3, s4, s5, touching, block_rounds, grid_rounds, worst_first, graded, work_list, cdt_assembly, one_at_a_time, petal_sinks");
   return s;
 }
 
@@ -629,6 +630,9 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
 
   r2d::Criteria crit = make_criteria(options);
   crit.grid_exp = scale.grid_exp;
+  // Off-centres take larger empty circles in their petal where there are (kernels.h,
+  // move_to_petal_sink); a few steps: the climbs on the maps stop after one or two.
+  if (crit.offcenter_h > 0 && strategies.petal_sinks) crit.sink_steps = 4;
   std::vector<double> region_area2;  // twice each region's area bound, by region number - 1
   if (options.region_areas)
     for (const RegionSeed2& r : pslg.regions) region_area2.push_back(r.max_area > 0 ? 2 * r.max_area : 0.0);
