@@ -488,11 +488,13 @@ TEST_P(Refine2d, OneAtATimeMeshesLikeTheParallelIteration) {
 
 // Graded order (issue 13): on a map, the parallel insertion without it split coarse
 // triangles before the grading around small features reached them, and needed 13% more
-// points than Triangle 1.6 on the counties map at 30 degrees. On a generated map of 25k
-// points `triangle -pcq30` adds 34,995 Steiner points; with the graded order 34,357-34,697
-// here and on the H100, without it 35,291-35,935.
+// points than Triangle 1.6 on the counties map at 30 degrees (98,703 Steiner points). Since
+// the petal sinks (kernels.h) it buys less: on the development box's CPU 90,323 against
+// 95,500 there (a generated wobbly map, which this test used before, showed only 1%).
 TEST_P(Refine2d, GradedOrderKeepsAMapNearTriangle) {
-  const Pslg g = wobbly_grid_map(40, 8, 7);
+  const auto f = std::filesystem::path(GDR_SHARED_DATA_DIR) / "pslg" / "us_counties_albers.poly";
+  if (!std::filesystem::exists(f)) GTEST_SKIP() << "no shared data at " << f.string();
+  const Pslg g = gdr::io::read_poly(f.string());
   auto o = options();
   o.min_angle = 30;
   // The graded order is the parallel iteration's (the CPU inserts one point at a time on
@@ -502,11 +504,11 @@ TEST_P(Refine2d, GradedOrderKeepsAMapNearTriangle) {
   setenv("GDR_DISABLE", "graded,one_at_a_time", 1);
   const auto plain = mesh(g, o);
   unsetenv("GDR_DISABLE");
-  std::printf("wobbly map at 30 degrees: %lld Steiner points graded, %lld without\n",
+  std::printf("counties map at 30 degrees: %lld Steiner points graded, %lld without\n",
               graded.stats.steiner_points, plain.stats.steiner_points);
-  EXPECT_LT(graded.stats.bad_area_percent, 0.02);  // all next to small input angles
-  EXPECT_LE(graded.stats.steiner_points, 34995 * 1005 / 1000);
-  EXPECT_LE(graded.stats.steiner_points * 101 / 100, plain.stats.steiner_points);
+  EXPECT_LT(graded.stats.bad_area_percent, 0.03);  // all next to small input angles
+  EXPECT_LE(graded.stats.steiner_points, 98703);
+  EXPECT_LE(graded.stats.steiner_points * 103 / 100, plain.stats.steiner_points);
 }
 
 // Locally optimal points (issue 13): off-centres whose circumcentre lies in the petal of the
