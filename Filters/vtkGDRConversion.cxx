@@ -557,6 +557,7 @@ void vtkGDRConversion::AddStats(const gdr::QualityTetStats& stats, vtkFieldData*
   AddValue<vtkDoubleArray>(fd, "MaximumDihedralAngleReached", stats.max_dihedral_deg);
   AddValue<vtkDoubleArray>(fd, "MaximumRadiusEdgeRatioReached", stats.max_radius_edge);
   AddSliverStats(stats, fd);
+  AddValue<vtkIdTypeArray>(fd, "SliverFlips", static_cast<vtkIdType>(stats.sliver_flips));
   AddValue<vtkDoubleArray>(fd, "Volume", stats.volume);
   AddValue<vtkDoubleArray>(fd, "InputVolume", stats.input_volume);
 }

@@ -209,7 +209,8 @@ void print_summary(const ArgsTet& a, const Surface& input, const QualityTetResul
                                    bound(o.min_dihedral_angle, " deg") + "), max " +
                                    fixed(s.max_dihedral_deg, 2) + " deg"});
   if (o.sliver_angle > 0)
-    info.row({"slivers", sliver_summary(o.sliver_angle, s.slivers_before, s.slivers_after, s.sliver_moves)});
+    info.row({"slivers", sliver_summary(o.sliver_angle, s.slivers_before, s.slivers_after, s.sliver_moves,
+                                        s.sliver_flips)});
   info.row({"radius-edge ratio", "max " + ratio(s.max_radius_edge) + " (" +
                                      bound(o.radius_edge_ratio, "") + ")"});
   info.row({"bad tetrahedra", with_commas(s.bad_tets) + ", " + fixed(s.bad_volume_percent, 4) +
@@ -300,6 +301,7 @@ void write_stats_json(const std::string& path, const ArgsTet& a, const QualityTe
   j.field("slivers_before", s.slivers_before);
   j.field("slivers_after", s.slivers_after);
   j.field("sliver_moves", s.sliver_moves);
+  j.field("sliver_flips", s.sliver_flips);
   j.field("max_radius_edge", s.max_radius_edge);
   j.field("volume", s.volume);
   j.field("input_volume", s.input_volume);

@@ -98,10 +98,10 @@ double since(std::chrono::steady_clock::time_point t0) {
 
 // The dihedral histogram in 10-degree groups, from the first group with angles to the last,
 // as TetGen's -V statistics show it.
-std::string sliver_summary(double angle, long long before, long long after, long long moves) {
+std::string sliver_summary(double angle, long long before, long long after, long long moves, long long flips) {
   return with_commas(before) + " tetrahedra with an angle below " + fixed(angle, 1) + " deg (or above " +
          fixed(180 - angle, 1) + ") before smoothing, " + with_commas(after) + " after (" + with_commas(moves) +
-         " moves)";
+         " moves" + (flips > 0 ? ", " + with_commas(flips) + " flips)" : ")");
 }
 
 void print_dihedral_histogram(std::ostream& out, const std::vector<long long>& bins) {

@@ -65,7 +65,8 @@ void print_dihedral_histogram(std::ostream& out, const std::vector<long long>& b
 
 // The summary's line on sliver removal (--sliver-angle) of gdr tet and gdr rdt: the
 // tetrahedra with an angle beyond `angle` degrees before and after smoothing, and the moves.
-std::string sliver_summary(double angle, long long before, long long after, long long moves);
+std::string sliver_summary(double angle, long long before, long long after, long long moves,
+                           long long flips = 0);
 void write_dihedral_histogram_csv(const std::string& path, const std::vector<long long>& bins);
 
 }  // namespace gdr::cli

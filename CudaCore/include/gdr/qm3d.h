@@ -92,8 +92,8 @@ struct QualityTetStats {
   double min_dihedral_deg = 0, max_dihedral_deg = 0;
   double max_radius_edge = 0;
   // Sliver removal (sliver_angle > 0): tetrahedra with an angle beyond it before and after,
-  // and the points moved.
-  long long slivers_before = 0, slivers_after = 0, sliver_moves = 0;
+  // the points moved, and the 3-2 flips made (slivers whose corners are all on the surface).
+  long long slivers_before = 0, slivers_after = 0, sliver_moves = 0, sliver_flips = 0;
   double volume = 0;                    // of the output
   double input_volume = 0;              // enclosed by the input surface
   double input_seconds = 0, cdt_seconds = 0, refine_seconds = 0, output_seconds = 0;

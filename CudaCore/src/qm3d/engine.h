@@ -16,6 +16,7 @@
 #include "mesh3d/cavity.h"
 #include "mesh3d/compact.h"
 #include "mesh3d/mesh3d.h"
+#include "mesh3d/flip.h"
 #include "mesh3d/smooth.h"
 #include "mesh3d/stall.h"
 #include "qm3d/kernels.h"
@@ -37,6 +38,7 @@ struct Strategies {
   bool blocking = true;        // segments whose splits keep failing are left as they are (Engine)
   bool acute_vertices = true;  // protecting balls at acute vertices too (qm3d/features.h)
   bool segment_presplit = true;  // segments that would wait on each other split before the CDT
+  bool flips = true;             // the sliver pass flips the slivers it cannot smooth (mesh3d/flip.h)
 };
 
 struct EngineParams {
@@ -213,6 +215,16 @@ struct Engine {
     if (params.sliver_sin > 0) {
       clock.restart();
       res.slivers = m3d::smooth_slivers(dm, m3d::SmoothParams{params.sliver_sin}, MeetsCriteria{params.criteria});
+      // Slivers with all four corners on the surface do not move: flips remove those it can.
+      if (res.slivers.slivers_after > 0 && params.strategies.flips) {
+        res.slivers.flips = m3d::flip_slivers(dm, params.sliver_sin, MeetsCriteria{params.criteria});
+        if (res.slivers.flips > 0)
+          res.slivers.slivers_after = m3d::count_slivers(dm, params.sliver_sin, res.slivers.min_sine_after);
+        if (params.check_links) {
+          m3d::compact(dm);
+          m3d::check_host_mesh(dm.to_host(host.input_points));
+        }
+      }
       clock.template stop<Space>("slivers");
     }
     download(out);

@@ -140,10 +140,11 @@ Strategies strategies_from_environment() {
         else if (name == "blocking") s.blocking = false;
         else if (name == "acute") s.acute_vertices = false;
         else if (name == "presplit") s.segment_presplit = false;
+        else if (name == "flips") s.flips = false;
         else return name == "s4";  // 2D only: the 3D engine always lists all three kinds together
         return true;
       },
-      "s1, s3, s5, touching, block_rounds, grid_rounds, worst_first, crowding, seeds, blocking, acute, presplit");
+      "s1, s3, s5, touching, block_rounds, grid_rounds, worst_first, crowding, seeds, blocking, acute, presplit, flips");
   return s;
 }
 
@@ -336,6 +337,7 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
     st.slivers_before = er.slivers.slivers_before;
     st.slivers_after = er.slivers.slivers_after;
     st.sliver_moves = er.slivers.moves;
+    st.sliver_flips = er.slivers.flips;
     if (st.backend_used == Backend::Gpu) st.peak_device_bytes = er.peak_bytes;
     if (er.cap_reached && cb.warning)
       cb.warning(st.automatic_steiner_cap
