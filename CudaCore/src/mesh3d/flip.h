@@ -8,8 +8,9 @@
 // their least dihedral sine is above the three's, and each meets the mesher's bounds if all
 // three did. The mesh is no longer Delaunay there, as after smoothing.
 //
-// The candidates go one after another (a flip changes the tetrahedra its neighbours would
-// use) in one thread of the execution space: slivers are few, tens per thousand tetrahedra.
+// In parallel rounds, as the smoothing: each sliver plans a flip, claims the three
+// tetrahedra and their neighbours across the faces that stay (whose links the flip rewrites)
+// with random priorities, and those that hold all their claims flip.
 #pragma once
 #include <cstring>
 
@@ -41,12 +42,17 @@ GDR_HD_INLINE int tets_around_edge(const TetView& m, int t, int c, int d, int* r
   return n;
 }
 
-// The 3-2 flip of edge cd of tetrahedron t, if it is allowed and raises the least dihedral
-// sine there (see above). Slot t and the next tetrahedron around cd take the two new ones,
-// the third is marked dead.
-template <class Bound>
-GDR_HD_INLINE bool flip32(const TetView& m, int t, int c, int d, const Bound& bound) {
+// A planned 3-2 flip: the edge cd of tetrahedron ring[0] and the three tetrahedra around it.
+struct Flip32 {
+  int c = -1, d = -1;
   int ring[3];
+};
+
+// Whether the 3-2 flip of edge cd of tetrahedron t is allowed and raises the least dihedral
+// sine there (see above); `f` gets the plan. Reads only the three tetrahedra.
+template <class Bound>
+GDR_HD_INLINE bool plan_flip32(const TetView& m, int t, int c, int d, const Bound& bound, Flip32& f) {
+  int* ring = f.ring;
   if (tets_around_edge(m, t, c, d, ring, 3) != 3) return false;
   if (is_subseg(m, t, c, d)) return false;
   int rv[3], k = 0;  // the ring vertices
@@ -85,6 +91,30 @@ GDR_HD_INLINE bool flip32(const TetView& m, int t, int c, int d, const Bound& bo
     if (!(min_dihedral_sine(p[0], p[1], p[2], p[3]) > old_least)) return false;
     if (old_good && !bound(m, ring[i], p)) return false;
   }
+  f.c = c;
+  f.d = d;
+  return true;
+}
+
+// Carries out a planned flip: ring[0] and ring[1] take the two new tetrahedra, ring[2] dies.
+GDR_HD_INLINE void apply_flip32(const TetView& m, const Flip32& f) {
+  const int c = f.c, d = f.d, t = f.ring[0];
+  const int* ring = f.ring;
+  int rv[3], k = 0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 4; ++j) {
+      const int v = m.tv[4 * ring[i] + j];
+      if (v == c || v == d) continue;
+      bool seen = false;
+      for (int u = 0; u < k; ++u) seen = seen || rv[u] == v;
+      if (!seen && k < 3) rv[k++] = v;
+    }
+  if (pred::orient3d(pt(m, rv[0]), pt(m, rv[1]), pt(m, rv[2]), pt(m, c)) < 0) {
+    const int s = rv[0];
+    rv[0] = rv[1];
+    rv[1] = s;
+  }
+  const int nv[2][4] = {{rv[0], rv[1], rv[2], c}, {rv[1], rv[0], rv[2], d}};
   // The faces on the union's boundary: each old tetrahedron's faces opposite c and d, with
   // their neighbour and subface; and the subsegment bits of the edges that stay.
   int ofv[6][3], otn[6], osub[6], no = 0;
@@ -149,7 +179,57 @@ GDR_HD_INLINE bool flip32(const TetView& m, int t, int c, int d, const Bound& bo
       }
     }
   }
-  return true;
+}
+
+// The planned flip of tetrahedron t (below the target): its edges by dihedral angle,
+// largest first (cosine -n1.n2 / (|n1| |n2|) for the outward normals of the two faces at
+// the edge), the first that may flip.
+template <class Bound>
+GDR_HD_INLINE bool plan_sliver_flip(const TetView& m, int t, const Bound& bound, Flip32& f) {
+  const int* q = m.tv + 4 * t;
+  const double* p[4] = {pt(m, q[0]), pt(m, q[1]), pt(m, q[2]), pt(m, q[3])};
+  double cosv[6];
+  for (int e = 0; e < 6; ++e) {
+    const int i = edge_corner(e, 0), j = edge_corner(e, 1);
+    int fc[2], k = 0;
+    for (int r = 0; r < 4; ++r)
+      if (r != i && r != j) fc[k++] = r;
+    double nrm[2][3];
+    for (int s = 0; s < 2; ++s) {
+      const double* x = p[face_corner(fc[s], 0)];
+      const double* y = p[face_corner(fc[s], 1)];
+      const double* z = p[face_corner(fc[s], 2)];
+      const double u[3] = {y[0] - x[0], y[1] - x[1], y[2] - x[2]};
+      const double w[3] = {z[0] - x[0], z[1] - x[1], z[2] - x[2]};
+      cross3(u, w, nrm[s]);
+    }
+    const double den = sqrt(dot3(nrm[0], nrm[0]) * dot3(nrm[1], nrm[1]));
+    cosv[e] = den > 0 ? -dot3(nrm[0], nrm[1]) / den : 0.0;
+  }
+  for (int tries = 0; tries < 6; ++tries) {
+    int best = -1;
+    for (int e = 0; e < 6; ++e)
+      if (cosv[e] < 2 && (best < 0 || cosv[e] < cosv[best])) best = e;
+    cosv[best] = 3;  // tried
+    if (plan_flip32(m, t, q[edge_corner(best, 0)], q[edge_corner(best, 1)], bound, f)) return true;
+  }
+  return false;
+}
+
+// The tetrahedra a planned flip writes: its three and their neighbours across the faces
+// that stay. Returns their number (at most 9).
+GDR_HD_INLINE int flip_footprint(const TetView& m, const Flip32& f, int* out) {
+  int n = 0;
+  for (int i = 0; i < 3; ++i) out[n++] = f.ring[i];
+  for (int i = 0; i < 3; ++i) {
+    const int* w = m.tv + 4 * f.ring[i];
+    for (int k = 0; k < 4; ++k) {
+      if (w[k] != f.c && w[k] != f.d) continue;
+      const int nb = m.tn[4 * f.ring[i] + k];
+      if (nb >= 0) out[n++] = nb >> 2;
+    }
+  }
+  return n;
 }
 
 // How many live tetrahedra have a least dihedral sine below the target, and the least sine.
@@ -178,70 +258,64 @@ long long count_slivers(DeviceTetMesh<Space>& mesh, double target, double& least
   return Ops::exclusive_scan(fl, fl, mesh.ntet);
 }
 
-// The flip pass over the tetrahedra whose least dihedral sine is below the target: each
-// tries its edges, the one with the largest dihedral angle first. Returns the flips made.
+// The flip pass over the tetrahedra whose least dihedral sine is below the target, in
+// rounds until one flips nothing (at most max_rounds). `mesh` may hold dead tetrahedra; its
+// marks are used and left zero. Returns the flips made.
 template <class Space, class Bound>
-long long flip_slivers(DeviceTetMesh<Space>& mesh, double target, const Bound& bound) {
+long long flip_slivers(DeviceTetMesh<Space>& mesh, double target, const Bound& bound, int max_rounds = 8) {
   using Ops = exec::Ops<Space>;
-  exec::Buffer<Space, int> cands, scratch;
-  exec::Buffer<Space, long long> flips(1);
-  const TetView m = mesh.view();
-  const std::size_t nc = exec::compact_indices<Space>(
-      mesh.ntet,
-      [=] GDR_HD(long long t) {
-        if (m.tflag[t] & kDead) return false;
-        const int* q = m.tv + 4 * t;
-        return min_dihedral_sine(pt(m, q[0]), pt(m, q[1]), pt(m, q[2]), pt(m, q[3])) < target;
-      },
-      cands, scratch);
-  if (nc == 0) return 0;
-  flips.zero();
-  const int* cv = cands.data();
-  long long* out = flips.data();
-  const long long n = static_cast<long long>(nc);
-  Ops::for_each(1, [=] GDR_HD(long long) {
-    long long made = 0;
-    for (long long j = 0; j < n; ++j) {
-      const int t = cv[j];
-      if (m.tflag[t] & kDead) continue;
-      const int* q = m.tv + 4 * t;
-      const double* p[4] = {pt(m, q[0]), pt(m, q[1]), pt(m, q[2]), pt(m, q[3])};
-      if (!(min_dihedral_sine(p[0], p[1], p[2], p[3]) < target)) continue;  // a flip fixed it
-      // Edges by their dihedral angle, largest first: its cosine is -n1.n2 / (|n1| |n2|)
-      // for the outward normals of the two faces at the edge.
-      double cosv[6];
-      for (int e = 0; e < 6; ++e) {
-        const int i = edge_corner(e, 0), jj = edge_corner(e, 1);
-        int f[2], k = 0;
-        for (int r = 0; r < 4; ++r)
-          if (r != i && r != jj) f[k++] = r;
-        double nrm[2][3];
-        for (int s = 0; s < 2; ++s) {
-          const double* x = p[face_corner(f[s], 0)];
-          const double* y = p[face_corner(f[s], 1)];
-          const double* z = p[face_corner(f[s], 2)];
-          const double u[3] = {y[0] - x[0], y[1] - x[1], y[2] - x[2]};
-          const double w[3] = {z[0] - x[0], z[1] - x[1], z[2] - x[2]};
-          cross3(u, w, nrm[s]);
-        }
-        const double den = sqrt(dot3(nrm[0], nrm[0]) * dot3(nrm[1], nrm[1]));
-        cosv[e] = den > 0 ? -dot3(nrm[0], nrm[1]) / den : 0.0;
+  exec::Buffer<Space, int> cands, scratch, won;
+  exec::Buffer<Space, Flip32> plans;
+  long long total = 0;
+  mesh.mark.zero();
+  for (int round = 0; round < max_rounds; ++round) {
+    const TetView m = mesh.view();
+    const std::size_t nc = exec::compact_indices<Space>(
+        mesh.ntet,
+        [=] GDR_HD(long long t) {
+          if (m.tflag[t] & kDead) return false;
+          const int* q = m.tv + 4 * t;
+          return min_dihedral_sine(pt(m, q[0]), pt(m, q[1]), pt(m, q[2]), pt(m, q[3])) < target;
+        },
+        cands, scratch);
+    if (nc == 0) break;
+    plans.resize_discard(nc);
+    won.resize_discard(nc);
+    const int* cv = cands.data();
+    Flip32* pl = plans.data();
+    int* wn = won.data();
+    const ShuffledPriority prio_of{cv, 0x85ebca6bu * static_cast<unsigned>(round + 1)};
+    Ops::for_each(nc, [=] GDR_HD(long long j) {
+      const int me = static_cast<int>(j);
+      wn[j] = 0;
+      if (!plan_sliver_flip(m, cv[j], bound, pl[j])) {
+        pl[j].c = -1;
+        return;
       }
-      for (int tries = 0; tries < 6; ++tries) {
-        int best = -1;
-        for (int e = 0; e < 6; ++e)
-          if (cosv[e] < 2 && (best < 0 || cosv[e] < cosv[best])) best = e;
-        const int c = q[edge_corner(best, 0)], d = q[edge_corner(best, 1)];
-        cosv[best] = 3;  // tried
-        if (flip32(m, t, c, d, bound)) {
-          ++made;
-          break;
-        }
-      }
-    }
-    *out = made;
-  });
-  return flips.get(0);
+      int foot[9];
+      const int n = flip_footprint(m, pl[j], foot);
+      for (int i = 0; i < n; ++i)
+        if (exec::claim(&m.mark[foot[i]], me, prio_of(me), prio_of) < 0) return;
+    });
+    Ops::for_each(nc, [=] GDR_HD(long long j) {
+      if (pl[j].c < 0) return;
+      int foot[9];
+      const int n = flip_footprint(m, pl[j], foot);
+      for (int i = 0; i < n; ++i)
+        if (m.mark[foot[i]] != static_cast<int>(j) + 1) return;
+      wn[j] = 1;
+    });
+    // Winners flip: each writes only the tetrahedra it holds (and the subfaces between them
+    // and the outside), so no two flips touch the same element.
+    Ops::for_each(nc, [=] GDR_HD(long long j) {
+      if (wn[j]) apply_flip32(m, pl[j]);
+    });
+    mesh.mark.zero();
+    const long long flipped = Ops::exclusive_scan(wn, wn, nc);
+    total += flipped;
+    if (flipped == 0) break;
+  }
+  return total;
 }
 
 }  // namespace gdr::m3d
