@@ -42,20 +42,10 @@ GDR_HD_INLINE int tets_around_edge(const TetView& m, int t, int c, int d, int* r
   return n;
 }
 
-// A planned 3-2 flip: the edge cd of tetrahedron ring[0] and the three tetrahedra around it.
-struct Flip32 {
-  int c = -1, d = -1;
-  int ring[3];
-};
-
-// Whether the 3-2 flip of edge cd of tetrahedron t is allowed and raises the least dihedral
-// sine there (see above); `f` gets the plan. Reads only the three tetrahedra.
-template <class Bound>
-GDR_HD_INLINE bool plan_flip32(const TetView& m, int t, int c, int d, const Bound& bound, Flip32& f) {
-  int* ring = f.ring;
-  if (tets_around_edge(m, t, c, d, ring, 3) != 3) return false;
-  if (is_subseg(m, t, c, d)) return false;
-  int rv[3], k = 0;  // the ring vertices
+// The three vertices around edge cd off it, in the three tetrahedra `ring`, ordered so that
+// c lies on the positive side of their triangle (false: not three).
+GDR_HD_INLINE bool ring_vertices(const TetView& m, const int* ring, int c, int d, int* rv) {
+  int k = 0;
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 4; ++j) {
       const int v = m.tv[4 * ring[i] + j];
@@ -70,6 +60,24 @@ GDR_HD_INLINE bool plan_flip32(const TetView& m, int t, int c, int d, const Boun
     rv[0] = rv[1];
     rv[1] = s;
   }
+  return true;
+}
+
+// A planned 3-2 flip: the edge cd of tetrahedron ring[0] and the three tetrahedra around it.
+struct Flip32 {
+  int c = -1, d = -1;
+  int ring[3];
+};
+
+// Whether the 3-2 flip of edge cd of tetrahedron t is allowed and raises the least dihedral
+// sine there (see above); `f` gets the plan. Reads only the three tetrahedra.
+template <class Bound>
+GDR_HD_INLINE bool plan_flip32(const TetView& m, int t, int c, int d, const Bound& bound, Flip32& f) {
+  int* ring = f.ring;
+  if (tets_around_edge(m, t, c, d, ring, 3) != 3) return false;
+  if (is_subseg(m, t, c, d)) return false;
+  int rv[3];
+  if (!ring_vertices(m, ring, c, d, rv)) return false;
   const double *A = pt(m, rv[0]), *B = pt(m, rv[1]), *E = pt(m, rv[2]), *C = pt(m, c), *D = pt(m, d);
   // c above abe, d below, and cd through the inside of triangle abe.
   if (!(pred::orient3d(A, B, E, C) > 0 && pred::orient3d(A, B, E, D) < 0)) return false;
@@ -100,20 +108,8 @@ GDR_HD_INLINE bool plan_flip32(const TetView& m, int t, int c, int d, const Boun
 GDR_HD_INLINE void apply_flip32(const TetView& m, const Flip32& f) {
   const int c = f.c, d = f.d, t = f.ring[0];
   const int* ring = f.ring;
-  int rv[3], k = 0;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 4; ++j) {
-      const int v = m.tv[4 * ring[i] + j];
-      if (v == c || v == d) continue;
-      bool seen = false;
-      for (int u = 0; u < k; ++u) seen = seen || rv[u] == v;
-      if (!seen && k < 3) rv[k++] = v;
-    }
-  if (pred::orient3d(pt(m, rv[0]), pt(m, rv[1]), pt(m, rv[2]), pt(m, c)) < 0) {
-    const int s = rv[0];
-    rv[0] = rv[1];
-    rv[1] = s;
-  }
+  int rv[3];
+  ring_vertices(m, ring, c, d, rv);
   const int nv[2][4] = {{rv[0], rv[1], rv[2], c}, {rv[1], rv[0], rv[2], d}};
   // The faces on the union's boundary: each old tetrahedron's faces opposite c and d, with
   // their neighbour and subface; and the subsegment bits of the edges that stay.
