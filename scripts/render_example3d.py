@@ -35,6 +35,8 @@ def parse():
     p.add_argument("--min-dihedral", type=float, default=0.0,
                    help="smallest dihedral angle in degrees; 0 = off (default)")
     p.add_argument("--max-volume", type=float, default=0.0, help="0 = off (default)")
+    p.add_argument("--sliver-angle", type=float, default=0.0,
+                   help="sliver removal after refinement (smoothing and flips), degrees; 0 = off (default)")
     p.add_argument("--backend", choices=["Auto", "GPU", "CPU"], default="Auto")
     p.add_argument("--plugin", help="path of GPUDelaunayRefinement.so")
     p.add_argument("--size", default="1400x560", help="picture size WxH (default 1400x560)")
@@ -98,6 +100,7 @@ def main():
     mesh.RadiusEdgeRatio = args.radius_edge
     mesh.MinimumDihedralAngle = args.min_dihedral
     mesh.MaximumVolume = args.max_volume
+    mesh.SliverAngle = args.sliver_angle
     mesh.Backend = args.backend
     mesh.UpdatePipeline()
     info = mesh.GetDataInformation(0)
@@ -113,6 +116,10 @@ def main():
         field(fetched, "MinimumDihedralAngleReached"),
         field(fetched, "MaximumDihedralAngleReached"), field(fetched, "Backend"),
         field(fetched, "TotalSeconds"))
+    if args.sliver_angle > 0:
+        title += "\nsliver pass at %g deg: %d -> %d tetrahedra beyond it, %d flips" % (
+            args.sliver_angle, field(fetched, "SliversBefore"), field(fetched, "SliversAfter"),
+            field(fetched, "SliverFlips"))
     if bad:
         title += "\n%d tetrahedra left above the bounds (IsBad)%s" % (
             bad, ", refinement stalled" if field(fetched, "Stalled") else "")

@@ -12,6 +12,8 @@
 // tetrahedra and their neighbours across the faces that stay (whose links the flip rewrites)
 // with random priorities, and those that hold all their claims flip.
 #pragma once
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 
 #include "mesh3d/mesh3d.h"
@@ -228,6 +230,13 @@ GDR_HD_INLINE int flip_footprint(const TetView& m, const Flip32& f, int* out) {
   return n;
 }
 
+// Is tetrahedron t alive with a least dihedral sine below the target?
+GDR_HD_INLINE bool is_sliver(const TetView& m, int t, double target) {
+  if (m.tflag[t] & kDead) return false;
+  const int* q = m.tv + 4 * t;
+  return min_dihedral_sine(pt(m, q[0]), pt(m, q[1]), pt(m, q[2]), pt(m, q[3])) < target;
+}
+
 // How many live tetrahedra have a least dihedral sine below the target, and the least sine.
 template <class Space>
 long long count_slivers(DeviceTetMesh<Space>& mesh, double target, double& least) {
@@ -260,21 +269,20 @@ long long count_slivers(DeviceTetMesh<Space>& mesh, double target, double& least
 template <class Space, class Bound>
 long long flip_slivers(DeviceTetMesh<Space>& mesh, double target, const Bound& bound, int max_rounds = 8) {
   using Ops = exec::Ops<Space>;
-  exec::Buffer<Space, int> cands, scratch, won;
+  exec::Buffer<Space, int> cands, next, scratch, won;
   exec::Buffer<Space, Flip32> plans;
   long long total = 0;
   mesh.mark.zero();
-  for (int round = 0; round < max_rounds; ++round) {
+  // The first round's candidates from the whole mesh; later ones from the last round's that
+  // are still slivers and the tetrahedra its flips made.
+  std::size_t nc;
+  {
     const TetView m = mesh.view();
-    const std::size_t nc = exec::compact_indices<Space>(
-        mesh.ntet,
-        [=] GDR_HD(long long t) {
-          if (m.tflag[t] & kDead) return false;
-          const int* q = m.tv + 4 * t;
-          return min_dihedral_sine(pt(m, q[0]), pt(m, q[1]), pt(m, q[2]), pt(m, q[3])) < target;
-        },
-        cands, scratch);
-    if (nc == 0) break;
+    nc = exec::compact_indices<Space>(mesh.ntet, [=] GDR_HD(long long t) { return is_sliver(m, static_cast<int>(t), target); },
+                                      cands, scratch);
+  }
+  for (int round = 0; round < max_rounds && nc > 0; ++round) {
+    const TetView m = mesh.view();
     plans.resize_discard(nc);
     won.resize_discard(nc);
     const int* cv = cands.data();
@@ -307,9 +315,28 @@ long long flip_slivers(DeviceTetMesh<Space>& mesh, double target, const Bound& b
       if (wn[j]) apply_flip32(m, pl[j]);
     });
     mesh.mark.zero();
+    // Next candidates: per old candidate, itself and, for a winner, the other new tetrahedron
+    // (its own slot, ring[0], is the first), each if still below the target.
+    next.resize_discard(2 * nc);
+    int* nx = next.data();
+    Ops::for_each(nc, [=] GDR_HD(long long j) {
+      const int a = wn[j] ? pl[j].ring[0] : cv[j];
+      nx[2 * j] = is_sliver(m, a, target) ? a : -1;
+      nx[2 * j + 1] = wn[j] && is_sliver(m, pl[j].ring[1], target) ? pl[j].ring[1] : -1;
+    });
     const long long flipped = Ops::exclusive_scan(wn, wn, nc);
     total += flipped;
-    if (flipped == 0) break;
+    if (std::getenv("GDR_TRACE"))
+      std::fprintf(stderr, "gdr-trace flips round %d: %zu candidates, %lld flipped\n", round + 1, nc, flipped);
+    // Stuck, or nearly (as the smoothing's rounds).
+    if (flipped * 50 < static_cast<long long>(nc)) break;
+    const int* nxc = nx;
+    nc = exec::compact_indices<Space>(
+        2 * static_cast<long long>(nc), [=] GDR_HD(long long i) { return nxc[i] >= 0; }, scratch, won);
+    cands.resize_discard(nc);
+    int* cw = cands.data();
+    const int* idx = scratch.data();
+    Ops::for_each(nc, [=] GDR_HD(long long i) { cw[i] = nxc[idx[i]]; });
   }
   return total;
 }
