@@ -21,9 +21,10 @@
 
 namespace gdr::m3d {
 
-// The tetrahedra around edge cd of t, into ring[0..most): their count, or -1 where the walk
-// meets the boundary or a subface, or there are more than `most`.
-GDR_HD_INLINE int tets_around_edge(const TetView& m, int t, int c, int d, int* ring, int most) {
+// The tetrahedra around edge cd of t, into ring[0..most), and the vertices around it off it
+// in the same order, into rv (tetrahedron i holds rv[i] and rv[i+1], cyclically): their
+// count, or -1 where the walk meets the boundary or a subface, or there are more than `most`.
+GDR_HD_INLINE int tets_around_edge(const TetView& m, int t, int c, int d, int* ring, int* rv, int most) {
   const int* q = m.tv + 4 * t;
   int x = -1;  // a corner of the current tetrahedron off cd: leave through the face opposite it
   for (int k = 0; k < 4 && x < 0; ++k)
@@ -31,7 +32,8 @@ GDR_HD_INLINE int tets_around_edge(const TetView& m, int t, int c, int d, int* r
   int n = 0, cur = t;
   do {
     if (n == most) return -1;
-    ring[n++] = cur;
+    ring[n] = cur;
+    rv[n++] = x;
     const int f = corner_of(m, cur, x);
     if (m.tsub[4 * cur + f] >= 0 || m.tn[4 * cur + f] < 0) return -1;
     const int* w = m.tv + 4 * cur;
@@ -44,101 +46,112 @@ GDR_HD_INLINE int tets_around_edge(const TetView& m, int t, int c, int d, int* r
   return n;
 }
 
-// The three vertices around edge cd off it, in the three tetrahedra `ring`, ordered so that
-// c lies on the positive side of their triangle (false: not three).
-GDR_HD_INLINE bool ring_vertices(const TetView& m, const int* ring, int c, int d, int* rv) {
-  int k = 0;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 4; ++j) {
-      const int v = m.tv[4 * ring[i] + j];
-      if (v == c || v == d) continue;
-      bool seen = false;
-      for (int u = 0; u < k; ++u) seen = seen || rv[u] == v;
-      if (!seen && k < 3) rv[k++] = v;
-    }
-  if (k != 3) return false;
-  if (pred::orient3d(pt(m, rv[0]), pt(m, rv[1]), pt(m, rv[2]), pt(m, c)) < 0) {
-    const int s = rv[0];
-    rv[0] = rv[1];
-    rv[1] = s;
-  }
-  return true;
-}
-
-// A planned 3-2 flip: the edge cd of tetrahedron ring[0] and the three tetrahedra around it.
-struct Flip32 {
-  int c = -1, d = -1;
-  int ring[3];
+// A planned edge removal: edge cd of tetrahedron ring[0], the n = 3 or 4 tetrahedra around it
+// and the vertices around it (tets_around_edge), and the triangulation of that ring: the fan
+// from rv[apex]. Its triangles, each with c and with d, make the 2 (n - 2) new tetrahedra.
+struct EdgeFlip {
+  int c = -1, d = -1, n = 0, apex = 0;
+  bool swap = false;
+  int ring[4], rv[4];
 };
 
-// Whether the 3-2 flip of edge cd of tetrahedron t is allowed and raises the least dihedral
-// sine there (see above); `f` gets the plan. Reads only the three tetrahedra.
+// New tetrahedron i (0 <= i < 2 (n - 2)) of a plan: fan triangle i / 2 with c (even i) or
+// d (odd i). The triangles follow the ring's turn, so one order (`swap` or not) puts c on
+// the positive side of all of them when the flip is valid.
+GDR_HD_INLINE void new_tet(const EdgeFlip& f, int i, int* v) {
+  const int j = i / 2 + 1;
+  int a = f.rv[f.apex], b = f.rv[(f.apex + j) % f.n];
+  const int e = f.rv[(f.apex + j + 1) % f.n];
+  if (f.swap != (i % 2 == 1)) {  // d's tetrahedra take the other order
+    const int s = a;
+    a = b;
+    b = s;
+  }
+  v[0] = a;
+  v[1] = b;
+  v[2] = e;
+  v[3] = i % 2 ? f.d : f.c;
+}
+
+// Whether removing edge cd of tetrahedron t is allowed and raises the least dihedral sine
+// there (see above); `f` gets the plan (the best fan for four tetrahedra). Reads only the
+// tetrahedra around cd.
 template <class Bound>
-GDR_HD_INLINE bool plan_flip32(const TetView& m, int t, int c, int d, const Bound& bound, Flip32& f) {
-  int* ring = f.ring;
-  if (tets_around_edge(m, t, c, d, ring, 3) != 3) return false;
-  if (is_subseg(m, t, c, d)) return false;
-  int rv[3];
-  if (!ring_vertices(m, ring, c, d, rv)) return false;
-  const double *A = pt(m, rv[0]), *B = pt(m, rv[1]), *E = pt(m, rv[2]), *C = pt(m, c), *D = pt(m, d);
-  // c above abe, d below, and cd through the inside of triangle abe.
-  if (!(pred::orient3d(A, B, E, C) > 0 && pred::orient3d(A, B, E, D) < 0)) return false;
-  const double s0 = pred::orient3d(C, D, A, B), s1 = pred::orient3d(C, D, B, E), s2 = pred::orient3d(C, D, E, A);
-  if (!((s0 > 0 && s1 > 0 && s2 > 0) || (s0 < 0 && s1 < 0 && s2 < 0))) return false;
-  // Quality: the least sine must rise, and bounds met before stay met.
-  double old_least = 1;
-  bool old_good = true;
-  for (int i = 0; i < 3; ++i) {
-    const int* w = m.tv + 4 * ring[i];
-    const double* p[4] = {pt(m, w[0]), pt(m, w[1]), pt(m, w[2]), pt(m, w[3])};
-    old_least = fmin(old_least, min_dihedral_sine(p[0], p[1], p[2], p[3]));
-    old_good = old_good && bound(m, ring[i], p);
-    if (m.tregion && m.tregion[ring[i]] != m.tregion[t]) return false;
-  }
-  const int nv[2][4] = {{rv[0], rv[1], rv[2], c}, {rv[1], rv[0], rv[2], d}};
-  for (int i = 0; i < 2; ++i) {
-    const double* p[4] = {pt(m, nv[i][0]), pt(m, nv[i][1]), pt(m, nv[i][2]), pt(m, nv[i][3])};
-    if (!(min_dihedral_sine(p[0], p[1], p[2], p[3]) > old_least)) return false;
-    if (old_good && !bound(m, ring[i], p)) return false;
-  }
+GDR_HD_INLINE bool plan_edge_flip(const TetView& m, int t, int c, int d, const Bound& bound, EdgeFlip& f) {
   f.c = c;
   f.d = d;
+  f.n = tets_around_edge(m, t, c, d, f.ring, f.rv, 4);
+  if (f.n < 3 || is_subseg(m, t, c, d)) return false;
+  double old_least = 1;
+  bool old_good = true;
+  for (int i = 0; i < f.n; ++i) {
+    const int* w = m.tv + 4 * f.ring[i];
+    const double* p[4] = {pt(m, w[0]), pt(m, w[1]), pt(m, w[2]), pt(m, w[3])};
+    old_least = fmin(old_least, min_dihedral_sine(p[0], p[1], p[2], p[3]));
+    old_good = old_good && bound(m, f.ring[i], p);
+    if (m.tregion && m.tregion[f.ring[i]] != m.tregion[t]) return false;
+  }
+  // Each fan (one for three tetrahedra, two distinct ones for four) whose new tetrahedra are
+  // all positive (exact orient3d: then they fill what the old ones did) and meet the bounds
+  // the old ones met; the one with the largest least sine, if above the old one.
+  double best = old_least;
+  int best_apex = -1;
+  for (int apex = 0; apex < (f.n == 3 ? 1 : 2); ++apex) {
+    f.apex = apex;
+    f.swap = pred::orient3d(pt(m, f.rv[apex]), pt(m, f.rv[(apex + 1) % f.n]), pt(m, f.rv[(apex + 2) % f.n]),
+                            pt(m, c)) < 0;
+    double least = 1;
+    bool ok = true;
+    for (int i = 0; i < 2 * (f.n - 2) && ok; ++i) {
+      int v[4];
+      new_tet(f, i, v);
+      const double* p[4] = {pt(m, v[0]), pt(m, v[1]), pt(m, v[2]), pt(m, v[3])};
+      ok = pred::orient3d(p[0], p[1], p[2], p[3]) > 0 && (!old_good || bound(m, t, p));
+      least = fmin(least, min_dihedral_sine(p[0], p[1], p[2], p[3]));
+    }
+    if (ok && least > best) {
+      best = least;
+      best_apex = apex;
+    }
+  }
+  if (best_apex < 0) return false;
+  f.apex = best_apex;
+  f.swap = pred::orient3d(pt(m, f.rv[f.apex]), pt(m, f.rv[(f.apex + 1) % f.n]), pt(m, f.rv[(f.apex + 2) % f.n]),
+                          pt(m, c)) < 0;
   return true;
 }
 
-// Carries out a planned flip: ring[0] and ring[1] take the two new tetrahedra, ring[2] dies.
-GDR_HD_INLINE void apply_flip32(const TetView& m, const Flip32& f) {
-  const int c = f.c, d = f.d, t = f.ring[0];
-  const int* ring = f.ring;
-  int rv[3];
-  ring_vertices(m, ring, c, d, rv);
-  const int nv[2][4] = {{rv[0], rv[1], rv[2], c}, {rv[1], rv[0], rv[2], d}};
+// Carries out a planned flip: ring[0..] take the new tetrahedra (2 of 3, or 4 of 4; the
+// third of three dies).
+GDR_HD_INLINE void apply_edge_flip(const TetView& m, const EdgeFlip& f) {
+  const int c = f.c, d = f.d, n = f.n, nnew = 2 * (n - 2);
   // The faces on the union's boundary: each old tetrahedron's faces opposite c and d, with
   // their neighbour and subface; and the subsegment bits of the edges that stay.
-  int ofv[6][3], otn[6], osub[6], no = 0;
-  int segs[16][2], ns = 0;
-  for (int i = 0; i < 3; ++i) {
-    const int u = ring[i];
+  int ofv[8][3], otn[8], osub[8], no = 0;
+  int segs[24][2], ns = 0;
+  for (int i = 0; i < n; ++i) {
+    const int u = f.ring[i];
     const int* w = m.tv + 4 * u;
-    for (int f = 0; f < 4; ++f) {
-      if (w[f] != c && w[f] != d) continue;
-      for (int j = 0; j < 3; ++j) ofv[no][j] = w[face_corner(f, j)];
-      otn[no] = m.tn[4 * u + f];
-      osub[no] = m.tsub[4 * u + f];
+    for (int k = 0; k < 4; ++k) {
+      if (w[k] != c && w[k] != d) continue;
+      for (int j = 0; j < 3; ++j) ofv[no][j] = w[face_corner(k, j)];
+      otn[no] = m.tn[4 * u + k];
+      osub[no] = m.tsub[4 * u + k];
       ++no;
     }
     for (int e = 0; e < 6; ++e)
-      if (is_subseg_edge(m, u, e) && ns < 16) {
+      if (is_subseg_edge(m, u, e) && ns < 24) {
         segs[ns][0] = w[edge_corner(e, 0)];
         segs[ns][1] = w[edge_corner(e, 1)];
         ++ns;
       }
   }
-  const int region = m.tregion ? m.tregion[t] : 0;
-  const int slot[2] = {ring[0], ring[1]};
-  m.tflag[ring[2]] = kDead;
-  for (int i = 0; i < 2; ++i) {
-    const int u = slot[i];
+  const int region = m.tregion ? m.tregion[f.ring[0]] : 0;
+  int nv[4][4];
+  for (int i = 0; i < nnew; ++i) new_tet(f, i, nv[i]);
+  for (int i = nnew; i < n; ++i) m.tflag[f.ring[i]] = kDead;
+  for (int i = 0; i < nnew; ++i) {
+    const int u = f.ring[i];
     int* w = m.tv + 4 * u;
     for (int j = 0; j < 4; ++j) w[j] = nv[i][j];
     int flag = 0;
@@ -149,31 +162,44 @@ GDR_HD_INLINE void apply_flip32(const TetView& m, const Flip32& f) {
     }
     m.tflag[u] = flag;
     if (m.tregion) m.tregion[u] = region;
-    for (int f = 0; f < 4; ++f) {
-      if (f == 3) {  // the new inner face abe, shared by the two
-        m.tn[4 * u + 3] = 4 * slot[1 - i] + 3;
-        m.tsub[4 * u + 3] = -1;
-        continue;
-      }
-      const int a = w[face_corner(f, 0)], b = w[face_corner(f, 1)], e = w[face_corner(f, 2)];
-      for (int o = 0; o < no; ++o) {
+  }
+  // Faces: one on the union's boundary takes the old face's neighbour and subface (and they
+  // point back); one between two new tetrahedra links them.
+  for (int i = 0; i < nnew; ++i) {
+    const int u = f.ring[i];
+    const int* w = m.tv + 4 * u;
+    for (int k = 0; k < 4; ++k) {
+      const int a = w[face_corner(k, 0)], b = w[face_corner(k, 1)], e = w[face_corner(k, 2)];
+      auto same = [&](const int* x) {
         int hits = 0;
-        for (int j = 0; j < 3; ++j) hits += ofv[o][j] == a || ofv[o][j] == b || ofv[o][j] == e;
-        if (hits != 3) continue;
-        m.tn[4 * u + f] = otn[o];
-        m.tsub[4 * u + f] = osub[o];
-        if (otn[o] >= 0) m.tn[otn[o]] = 4 * u + f;
+        for (int j = 0; j < 3; ++j) hits += x[j] == a || x[j] == b || x[j] == e;
+        return hits == 3;
+      };
+      bool outer = false;
+      for (int o = 0; o < no && !outer; ++o) {
+        if (!same(ofv[o])) continue;
+        outer = true;
+        m.tn[4 * u + k] = otn[o];
+        m.tsub[4 * u + k] = osub[o];
+        if (otn[o] >= 0) m.tn[otn[o]] = 4 * u + k;
         if (osub[o] >= 0) {
-          // The subface's side that named this face's old tetrahedron now names the new one.
-          const int s = osub[o];
+          // The subface's side that named the old tetrahedron now names the new one.
           for (int side = 0; side < 2; ++side) {
-            const int tf = m.st[2 * s + side];
+            const int tf = m.st[2 * osub[o] + side];
             if (tf < 0) continue;
-            const int ot = tf >> 2;
-            if (ot == ring[0] || ot == ring[1] || ot == ring[2]) m.st[2 * s + side] = 4 * u + f;
+            for (int r = 0; r < n; ++r)
+              if ((tf >> 2) == f.ring[r]) m.st[2 * osub[o] + side] = 4 * u + k;
           }
         }
-        break;
+      }
+      if (outer) continue;
+      m.tsub[4 * u + k] = -1;
+      for (int i2 = 0; i2 < nnew; ++i2) {
+        if (i2 == i) continue;
+        for (int k2 = 0; k2 < 4; ++k2) {
+          const int fv[3] = {nv[i2][face_corner(k2, 0)], nv[i2][face_corner(k2, 1)], nv[i2][face_corner(k2, 2)]};
+          if (same(fv)) m.tn[4 * u + k] = 4 * f.ring[i2] + k2;
+        }
       }
     }
   }
@@ -183,7 +209,7 @@ GDR_HD_INLINE void apply_flip32(const TetView& m, const Flip32& f) {
 // largest first (cosine -n1.n2 / (|n1| |n2|) for the outward normals of the two faces at
 // the edge), the first that may flip.
 template <class Bound>
-GDR_HD_INLINE bool plan_sliver_flip(const TetView& m, int t, const Bound& bound, Flip32& f) {
+GDR_HD_INLINE bool plan_sliver_flip(const TetView& m, int t, const Bound& bound, EdgeFlip& f) {
   const int* q = m.tv + 4 * t;
   const double* p[4] = {pt(m, q[0]), pt(m, q[1]), pt(m, q[2]), pt(m, q[3])};
   double cosv[6];
@@ -209,17 +235,17 @@ GDR_HD_INLINE bool plan_sliver_flip(const TetView& m, int t, const Bound& bound,
     for (int e = 0; e < 6; ++e)
       if (cosv[e] < 2 && (best < 0 || cosv[e] < cosv[best])) best = e;
     cosv[best] = 3;  // tried
-    if (plan_flip32(m, t, q[edge_corner(best, 0)], q[edge_corner(best, 1)], bound, f)) return true;
+    if (plan_edge_flip(m, t, q[edge_corner(best, 0)], q[edge_corner(best, 1)], bound, f)) return true;
   }
   return false;
 }
 
-// The tetrahedra a planned flip writes: its three and their neighbours across the faces
-// that stay. Returns their number (at most 9).
-GDR_HD_INLINE int flip_footprint(const TetView& m, const Flip32& f, int* out) {
+// The tetrahedra a planned flip writes: its own and their neighbours across the faces that
+// stay. Returns their number (at most 12).
+GDR_HD_INLINE int flip_footprint(const TetView& m, const EdgeFlip& f, int* out) {
   int n = 0;
-  for (int i = 0; i < 3; ++i) out[n++] = f.ring[i];
-  for (int i = 0; i < 3; ++i) {
+  for (int i = 0; i < f.n; ++i) out[n++] = f.ring[i];
+  for (int i = 0; i < f.n; ++i) {
     const int* w = m.tv + 4 * f.ring[i];
     for (int k = 0; k < 4; ++k) {
       if (w[k] != f.c && w[k] != f.d) continue;
@@ -270,7 +296,7 @@ template <class Space, class Bound>
 long long flip_slivers(DeviceTetMesh<Space>& mesh, double target, const Bound& bound, int max_rounds = 8) {
   using Ops = exec::Ops<Space>;
   exec::Buffer<Space, int> cands, next, scratch, won;
-  exec::Buffer<Space, Flip32> plans;
+  exec::Buffer<Space, EdgeFlip> plans;
   long long total = 0;
   mesh.mark.zero();
   // The first round's candidates from the whole mesh; later ones from the last round's that
@@ -286,7 +312,7 @@ long long flip_slivers(DeviceTetMesh<Space>& mesh, double target, const Bound& b
     plans.resize_discard(nc);
     won.resize_discard(nc);
     const int* cv = cands.data();
-    Flip32* pl = plans.data();
+    EdgeFlip* pl = plans.data();
     int* wn = won.data();
     const ShuffledPriority prio_of{cv, 0x85ebca6bu * static_cast<unsigned>(round + 1)};
     Ops::for_each(nc, [=] GDR_HD(long long j) {
@@ -296,14 +322,14 @@ long long flip_slivers(DeviceTetMesh<Space>& mesh, double target, const Bound& b
         pl[j].c = -1;
         return;
       }
-      int foot[9];
+      int foot[12];
       const int n = flip_footprint(m, pl[j], foot);
       for (int i = 0; i < n; ++i)
         if (exec::claim(&m.mark[foot[i]], me, prio_of(me), prio_of) < 0) return;
     });
     Ops::for_each(nc, [=] GDR_HD(long long j) {
       if (pl[j].c < 0) return;
-      int foot[9];
+      int foot[12];
       const int n = flip_footprint(m, pl[j], foot);
       for (int i = 0; i < n; ++i)
         if (m.mark[foot[i]] != static_cast<int>(j) + 1) return;
@@ -312,17 +338,18 @@ long long flip_slivers(DeviceTetMesh<Space>& mesh, double target, const Bound& b
     // Winners flip: each writes only the tetrahedra it holds (and the subfaces between them
     // and the outside), so no two flips touch the same element.
     Ops::for_each(nc, [=] GDR_HD(long long j) {
-      if (wn[j]) apply_flip32(m, pl[j]);
+      if (wn[j]) apply_edge_flip(m, pl[j]);
     });
     mesh.mark.zero();
-    // Next candidates: per old candidate, itself and, for a winner, the other new tetrahedron
-    // (its own slot, ring[0], is the first), each if still below the target.
-    next.resize_discard(2 * nc);
+    // Next candidates: per old candidate, itself or, for a winner, the new tetrahedra (its own
+    // slot, ring[0], is the first), each if still below the target.
+    next.resize_discard(4 * nc);
     int* nx = next.data();
     Ops::for_each(nc, [=] GDR_HD(long long j) {
-      const int a = wn[j] ? pl[j].ring[0] : cv[j];
-      nx[2 * j] = is_sliver(m, a, target) ? a : -1;
-      nx[2 * j + 1] = wn[j] && is_sliver(m, pl[j].ring[1], target) ? pl[j].ring[1] : -1;
+      for (int r = 0; r < 4; ++r) {
+        const int a = wn[j] ? (r < 2 * (pl[j].n - 2) ? pl[j].ring[r] : -1) : (r == 0 ? cv[j] : -1);
+        nx[4 * j + r] = a >= 0 && is_sliver(m, a, target) ? a : -1;
+      }
     });
     const long long flipped = Ops::exclusive_scan(wn, wn, nc);
     total += flipped;
@@ -332,7 +359,7 @@ long long flip_slivers(DeviceTetMesh<Space>& mesh, double target, const Bound& b
     if (flipped * 50 < static_cast<long long>(nc)) break;
     const int* nxc = nx;
     nc = exec::compact_indices<Space>(
-        2 * static_cast<long long>(nc), [=] GDR_HD(long long i) { return nxc[i] >= 0; }, scratch, won);
+        4 * static_cast<long long>(nc), [=] GDR_HD(long long i) { return nxc[i] >= 0; }, scratch, won);
     cands.resize_discard(nc);
     int* cw = cands.data();
     const int* idx = scratch.data();
