@@ -81,7 +81,8 @@ def main():
     ap.add_argument("--keep", help="folder to copy the inputs of failed runs into")
     args = ap.parse_args()
     rng = random.Random(args.seed)
-    runs3d = (["tet", "--radius-edge", "1.4"], ["tet", "--radius-edge", "2"], ["rdt"])
+    runs3d = (["tet", "--radius-edge", "1.4"], ["tet", "--radius-edge", "2"],
+              ["tet", "--radius-edge", "1.4", "--sliver-angle", "20"], ["rdt"])
     runs2d = (["2d", "-pcq20"], ["2d", "-pcq30"], ["2d", "-pq25"])
     failures = 0
     with tempfile.TemporaryDirectory() as work:
