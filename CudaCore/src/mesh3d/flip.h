@@ -1,16 +1,17 @@
-// Sliver removal by 3-2 flips, after smoothing (mesh3d/smooth.h), for the slivers smoothing
+// Sliver removal by edge flips, after smoothing (mesh3d/smooth.h), for the slivers smoothing
 // cannot reach: those whose four corners lie on the surface (TetGen's -O flips them too).
 // A sliver's four corners are nearly coplanar; two of its edges are the diagonals of that
-// near-quadrilateral. Where such an edge cd has exactly three tetrahedra around it, none of
-// its faces a subface and cd no subsegment, the three (cd with ring a, b, e) are replaced by
-// the two tetrahedra abec and abed when the segment cd crosses the triangle abe (then the two
-// tile the same polyhedron, so the mesh stays valid and conforming and its volume the same),
-// their least dihedral sine is above the three's, and each meets the mesher's bounds if all
-// three did. The mesh is no longer Delaunay there, as after smoothing.
+// near-quadrilateral. Where such an edge cd has three or four tetrahedra around it, none of
+// their faces at cd a subface and cd no subsegment, they are replaced by the tetrahedra that
+// join c and d to a triangulation of the ring of vertices around cd (3-2 and 4-4 flips;
+// for four, the better of the two) when every new tetrahedron is positive by exact orient3d
+// (then they tile the same polyhedron, so the mesh stays valid and conforming and its volume
+// the same), their least dihedral sine is above the old ones', and each meets the mesher's
+// bounds if all the old ones did. The mesh is no longer Delaunay there, as after smoothing.
 //
-// In parallel rounds, as the smoothing: each sliver plans a flip, claims the three
-// tetrahedra and their neighbours across the faces that stay (whose links the flip rewrites)
-// with random priorities, and those that hold all their claims flip.
+// In parallel rounds, as the smoothing: each sliver plans a flip, claims the tetrahedra
+// around the edge and their neighbours across the faces that stay (whose links the flip
+// rewrites) with random priorities, and those that hold all their claims flip.
 #pragma once
 #include <cstdio>
 #include <cstdlib>

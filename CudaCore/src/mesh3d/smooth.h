@@ -38,7 +38,7 @@ struct SmoothResult {
   long long slivers_before = 0, slivers_after = 0;  // tetrahedra below the target
   double min_sine_before = 1, min_sine_after = 1;   // the least dihedral sine there
   long long moves = 0;                              // vertex moves accepted
-  long long flips = 0;                              // 3-2 flips made after (mesh3d/flip.h)
+  long long flips = 0;                              // edge flips made after (mesh3d/flip.h)
   int rounds = 0;
 };
 
