@@ -27,6 +27,7 @@
 #include "vtkSMViewProxy.h"
 
 #include <QApplication>
+#include <QEventLoop>
 #include <QEvent>
 #include <QMouseEvent>
 #include <QTimer>
@@ -361,9 +362,12 @@ void pqGPUDelaunayGUI::onProgress(const QString& text)
     return;
   }
   // Paint the status bar and deliver a click on its abort button. The progress manager
-  // filters out key presses and clicks elsewhere while progress is shown.
+  // filters out key presses and clicks elsewhere while progress is shown. Timers wait: a
+  // run from `paraview --script` at startup fired the welcome dialog's timer here, and the
+  // dialog waited for ever for a click that the progress manager filtered out (honoured by
+  // Qt's event dispatcher on Linux).
   this->InProcessEvents = true;
-  QApplication::processEvents();
+  QApplication::processEvents(QEventLoop::AllEvents | QEventLoop::X11ExcludeTimers);
   this->InProcessEvents = false;
 }
 
