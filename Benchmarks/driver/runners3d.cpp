@@ -189,7 +189,7 @@ Result run_gdr_tet(const Case& c, Inputs& inputs, const TetBounds& b, bool valid
   if (s.stalled) r.message += "refinement stalled. ";
   if (o.sliver_angle > 0)
     r.message += "slivers (angle beyond " + number_arg(o.sliver_angle) + " deg) " + std::to_string(s.slivers_before) +
-                 " -> " + std::to_string(s.slivers_after) + ". ";
+                 " -> " + std::to_string(s.slivers_after) + " (" + std::to_string(s.sliver_flips) + " flips). ";
   if (s.protected_bad_tets > 0)
     r.message += std::to_string(s.protected_bad_tets) + " bad tets protected (small input angles). ";
   if (repeat > 1) r.message += "median of " + std::to_string(repeat) + " runs. ";
