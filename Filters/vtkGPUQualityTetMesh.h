@@ -91,8 +91,8 @@ public:
    * Sliver removal after refinement, in degrees (TetGen's -O smoothing): interior Steiner
    * points of tetrahedra with a dihedral angle below it (or above 180 minus it) move to
    * raise the smallest dihedral angle around them, keeping the other bounds; then slivers
-   * with all four corners on the surface are removed by 3-2 and 4-4 flips where one raises their
-   * smallest angle. Clamped to [0, 30]; 0 (default) turns it off. The mesh is then not
+   * with all four corners on the surface are removed by 3-2, 4-4 and 5-6 flips where one
+   * raises their smallest angle. Clamped to [0, 30]; 0 (default) turns it off. The mesh is then not
    * Delaunay where points moved or tetrahedra flipped. The field data SliversBefore and
    * SliversAfter count such tetrahedra, SliverFlips the flips.
    */

@@ -62,9 +62,9 @@ Quality and size:
   --max-volume V          largest tetrahedron volume (TetGen's -a V; default: no limit)
   --sliver-angle DEG      after refinement, move interior Steiner points to raise dihedral
                           angles below DEG (and above 180 - DEG) as TetGen's -O smoothing
-                          does, keeping --radius-edge, then flip (3-2, 4-4) the slivers left
-                          where that raises their angles (default off; at most 30; the mesh
-                          is then not Delaunay there, and --check skips that test)
+                          does, keeping --radius-edge, then flip the slivers left where that
+                          raises their angles (default off; at most 30; the mesh is then
+                          not Delaunay there, and --check skips that test)
   --max-steiner N         stop cleanly after inserting N Steiner points (default: no cap
                           for B >= 2 without --min-dihedral, where refinement terminates;
                           otherwise an automatic cap, reported in the summary)

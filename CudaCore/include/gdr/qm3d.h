@@ -92,7 +92,7 @@ struct QualityTetStats {
   double min_dihedral_deg = 0, max_dihedral_deg = 0;
   double max_radius_edge = 0;
   // Sliver removal (sliver_angle > 0): tetrahedra with an angle beyond it before and after,
-  // the points moved, and the 3-2 and 4-4 flips made (slivers whose corners are all on the surface).
+  // the points moved, and the edge flips made (slivers whose corners all lie on the surface).
   long long slivers_before = 0, slivers_after = 0, sliver_moves = 0, sliver_flips = 0;
   double volume = 0;                    // of the output
   double input_volume = 0;              // enclosed by the input surface

@@ -1,10 +1,10 @@
 // Sliver removal by edge flips, after smoothing (mesh3d/smooth.h), for the slivers smoothing
 // cannot reach: those whose four corners lie on the surface (TetGen's -O flips them too).
 // A sliver's four corners are nearly coplanar; two of its edges are the diagonals of that
-// near-quadrilateral. Where such an edge cd has three or four tetrahedra around it, none of
+// near-quadrilateral. Where such an edge cd has three to five tetrahedra around it, none of
 // their faces at cd a subface and cd no subsegment, they are replaced by the tetrahedra that
-// join c and d to a triangulation of the ring of vertices around cd (3-2 and 4-4 flips;
-// for four, the better of the two) when every new tetrahedron is positive by exact orient3d
+// join c and d to a triangulation of the ring of vertices around cd (3-2, 4-4 and 5-6 flips;
+// the best triangulation) when every new tetrahedron is positive by exact orient3d
 // (then they tile the same polyhedron, so the mesh stays valid and conforming and its volume
 // the same), their least dihedral sine is above the old ones', and each meets the mesher's
 // bounds if all the old ones did. The mesh is no longer Delaunay there, as after smoothing.
@@ -47,13 +47,16 @@ GDR_HD_INLINE int tets_around_edge(const TetView& m, int t, int c, int d, int* r
   return n;
 }
 
-// A planned edge removal: edge cd of tetrahedron ring[0], the n = 3 or 4 tetrahedra around it
-// and the vertices around it (tets_around_edge), and the triangulation of that ring: the fan
-// from rv[apex]. Its triangles, each with c and with d, make the 2 (n - 2) new tetrahedra.
+// A planned edge removal: edge cd of tetrahedron ring[0], the n = 3, 4 or 5 tetrahedra around
+// it and the vertices around it (tets_around_edge), and the triangulation of that ring: the
+// fan from rv[apex] (for n <= 5 every triangulation is a fan). Its triangles, each with c and
+// with d, make the 2 (n - 2) new tetrahedra: into the old ones' slots, and for n = 5 one more,
+// ring[5], given when the flip is carried out.
 struct EdgeFlip {
   int c = -1, d = -1, n = 0, apex = 0;
   bool swap = false;
-  int ring[4], rv[4];
+  int ring[6], rv[5];
+  GDR_HD int slot(int i) const { return i < n ? ring[i] : ring[5]; }
 };
 
 // New tetrahedron i (0 <= i < 2 (n - 2)) of a plan: fan triangle i / 2 with c (even i) or
@@ -81,7 +84,7 @@ template <class Bound>
 GDR_HD_INLINE bool plan_edge_flip(const TetView& m, int t, int c, int d, const Bound& bound, EdgeFlip& f) {
   f.c = c;
   f.d = d;
-  f.n = tets_around_edge(m, t, c, d, f.ring, f.rv, 4);
+  f.n = tets_around_edge(m, t, c, d, f.ring, f.rv, 5);
   if (f.n < 3 || is_subseg(m, t, c, d)) return false;
   double old_least = 1;
   bool old_good = true;
@@ -92,12 +95,12 @@ GDR_HD_INLINE bool plan_edge_flip(const TetView& m, int t, int c, int d, const B
     old_good = old_good && bound(m, f.ring[i], p);
     if (m.tregion && m.tregion[f.ring[i]] != m.tregion[t]) return false;
   }
-  // Each fan (one for three tetrahedra, two distinct ones for four) whose new tetrahedra are
+  // Each fan (one for three tetrahedra, two distinct ones for four, five for five) whose new tetrahedra are
   // all positive (exact orient3d: then they fill what the old ones did) and meet the bounds
   // the old ones met; the one with the largest least sine, if above the old one.
   double best = old_least;
   int best_apex = -1;
-  for (int apex = 0; apex < (f.n == 3 ? 1 : 2); ++apex) {
+  for (int apex = 0; apex < (f.n == 3 ? 1 : (f.n == 4 ? 2 : 5)); ++apex) {
     f.apex = apex;
     f.swap = pred::orient3d(pt(m, f.rv[apex]), pt(m, f.rv[(apex + 1) % f.n]), pt(m, f.rv[(apex + 2) % f.n]),
                             pt(m, c)) < 0;
@@ -122,14 +125,14 @@ GDR_HD_INLINE bool plan_edge_flip(const TetView& m, int t, int c, int d, const B
   return true;
 }
 
-// Carries out a planned flip: ring[0..] take the new tetrahedra (2 of 3, or 4 of 4; the
-// third of three dies).
+// Carries out a planned flip: the slots take the new tetrahedra (2 of 3, the third dying; 4 of
+// 4; 5 of 5 and ring[5]).
 GDR_HD_INLINE void apply_edge_flip(const TetView& m, const EdgeFlip& f) {
   const int c = f.c, d = f.d, n = f.n, nnew = 2 * (n - 2);
   // The faces on the union's boundary: each old tetrahedron's faces opposite c and d, with
   // their neighbour and subface; and the subsegment bits of the edges that stay.
-  int ofv[8][3], otn[8], osub[8], no = 0;
-  int segs[24][2], ns = 0;
+  int ofv[10][3], otn[10], osub[10], no = 0;
+  int segs[30][2], ns = 0;
   for (int i = 0; i < n; ++i) {
     const int u = f.ring[i];
     const int* w = m.tv + 4 * u;
@@ -141,18 +144,18 @@ GDR_HD_INLINE void apply_edge_flip(const TetView& m, const EdgeFlip& f) {
       ++no;
     }
     for (int e = 0; e < 6; ++e)
-      if (is_subseg_edge(m, u, e) && ns < 24) {
+      if (is_subseg_edge(m, u, e) && ns < 30) {
         segs[ns][0] = w[edge_corner(e, 0)];
         segs[ns][1] = w[edge_corner(e, 1)];
         ++ns;
       }
   }
   const int region = m.tregion ? m.tregion[f.ring[0]] : 0;
-  int nv[4][4];
+  int nv[6][4];
   for (int i = 0; i < nnew; ++i) new_tet(f, i, nv[i]);
   for (int i = nnew; i < n; ++i) m.tflag[f.ring[i]] = kDead;
   for (int i = 0; i < nnew; ++i) {
-    const int u = f.ring[i];
+    const int u = f.slot(i);
     int* w = m.tv + 4 * u;
     for (int j = 0; j < 4; ++j) w[j] = nv[i][j];
     int flag = 0;
@@ -167,7 +170,7 @@ GDR_HD_INLINE void apply_edge_flip(const TetView& m, const EdgeFlip& f) {
   // Faces: one on the union's boundary takes the old face's neighbour and subface (and they
   // point back); one between two new tetrahedra links them.
   for (int i = 0; i < nnew; ++i) {
-    const int u = f.ring[i];
+    const int u = f.slot(i);
     const int* w = m.tv + 4 * u;
     for (int k = 0; k < 4; ++k) {
       const int a = w[face_corner(k, 0)], b = w[face_corner(k, 1)], e = w[face_corner(k, 2)];
@@ -199,7 +202,7 @@ GDR_HD_INLINE void apply_edge_flip(const TetView& m, const EdgeFlip& f) {
         if (i2 == i) continue;
         for (int k2 = 0; k2 < 4; ++k2) {
           const int fv[3] = {nv[i2][face_corner(k2, 0)], nv[i2][face_corner(k2, 1)], nv[i2][face_corner(k2, 2)]};
-          if (same(fv)) m.tn[4 * u + k] = 4 * f.ring[i2] + k2;
+          if (same(fv)) m.tn[4 * u + k] = 4 * f.slot(i2) + k2;
         }
       }
     }
@@ -242,7 +245,7 @@ GDR_HD_INLINE bool plan_sliver_flip(const TetView& m, int t, const Bound& bound,
 }
 
 // The tetrahedra a planned flip writes: its own and their neighbours across the faces that
-// stay. Returns their number (at most 12).
+// stay. Returns their number (at most 15).
 GDR_HD_INLINE int flip_footprint(const TetView& m, const EdgeFlip& f, int* out) {
   int n = 0;
   for (int i = 0; i < f.n; ++i) out[n++] = f.ring[i];
@@ -323,33 +326,47 @@ long long flip_slivers(DeviceTetMesh<Space>& mesh, double target, const Bound& b
         pl[j].c = -1;
         return;
       }
-      int foot[12];
+      int foot[15];
       const int n = flip_footprint(m, pl[j], foot);
       for (int i = 0; i < n; ++i)
         if (exec::claim(&m.mark[foot[i]], me, prio_of(me), prio_of) < 0) return;
     });
     Ops::for_each(nc, [=] GDR_HD(long long j) {
       if (pl[j].c < 0) return;
-      int foot[12];
+      int foot[15];
       const int n = flip_footprint(m, pl[j], foot);
       for (int i = 0; i < n; ++i)
         if (m.mark[foot[i]] != static_cast<int>(j) + 1) return;
       wn[j] = 1;
     });
+    // A flip of five tetrahedra makes six: the sixth goes after the last tetrahedron.
+    next.resize_discard(nc);
+    int* ex = next.data();
+    Ops::for_each(nc, [=] GDR_HD(long long j) { ex[j] = wn[j] && pl[j].n == 5; });
+    const int extra = static_cast<int>(Ops::exclusive_scan(ex, ex, nc));
+    const int first = mesh.ntet;
+    if (extra > 0) {
+      mesh.reserve(first + extra, mesh.nsub, mesh.npts);
+      Ops::for_each(nc, [=] GDR_HD(long long j) {
+        if (wn[j] && pl[j].n == 5) pl[j].ring[5] = first + ex[j];
+      });
+      mesh.ntet = first + extra;
+    }
+    const TetView mm = mesh.view();
     // Winners flip: each writes only the tetrahedra it holds (and the subfaces between them
-    // and the outside), so no two flips touch the same element.
+    // and the outside, and its new slot), so no two flips touch the same element.
     Ops::for_each(nc, [=] GDR_HD(long long j) {
-      if (wn[j]) apply_edge_flip(m, pl[j]);
+      if (wn[j]) apply_edge_flip(mm, pl[j]);
     });
     mesh.mark.zero();
     // Next candidates: per old candidate, itself or, for a winner, the new tetrahedra (its own
     // slot, ring[0], is the first), each if still below the target.
-    next.resize_discard(4 * nc);
+    next.resize_discard(6 * nc);
     int* nx = next.data();
     Ops::for_each(nc, [=] GDR_HD(long long j) {
-      for (int r = 0; r < 4; ++r) {
-        const int a = wn[j] ? (r < 2 * (pl[j].n - 2) ? pl[j].ring[r] : -1) : (r == 0 ? cv[j] : -1);
-        nx[4 * j + r] = a >= 0 && is_sliver(m, a, target) ? a : -1;
+      for (int r = 0; r < 6; ++r) {
+        const int a = wn[j] ? (r < 2 * (pl[j].n - 2) ? pl[j].slot(r) : -1) : (r == 0 ? cv[j] : -1);
+        nx[6 * j + r] = a >= 0 && is_sliver(mm, a, target) ? a : -1;
       }
     });
     const long long flipped = Ops::exclusive_scan(wn, wn, nc);
@@ -360,7 +377,7 @@ long long flip_slivers(DeviceTetMesh<Space>& mesh, double target, const Bound& b
     if (flipped * 50 < static_cast<long long>(nc)) break;
     const int* nxc = nx;
     nc = exec::compact_indices<Space>(
-        4 * static_cast<long long>(nc), [=] GDR_HD(long long i) { return nxc[i] >= 0; }, scratch, won);
+        6 * static_cast<long long>(nc), [=] GDR_HD(long long i) { return nxc[i] >= 0; }, scratch, won);
     cands.resize_discard(nc);
     int* cw = cands.data();
     const int* idx = scratch.data();

@@ -469,7 +469,7 @@ TEST(QualityTetMesh, CoarseLatheTurnedPartIsRefinedThroughout) {
 }
 
 // Slivers whose four corners all lie on the surface (between the bushing's rings of
-// cocircular points) do not move in the smoothing pass; 3-2 and 4-4 flips remove most of them
+// cocircular points) do not move in the smoothing pass; 3-2, 4-4 and 5-6 flips remove most of them
 // (mesh3d/flip.h). On the development box's CPU at B = 1.4 and 15 degrees: 71-102 slivers
 // left without flips, 10-14 with (50-59 flips), the smallest dihedral angle 0.00 -> 3.8-9.5
 // degrees (the runs differ on two threads).
