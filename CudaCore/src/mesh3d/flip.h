@@ -78,8 +78,7 @@ GDR_HD_INLINE void new_tet(const EdgeFlip& f, int i, int* v) {
 }
 
 // Whether removing edge cd of tetrahedron t is allowed and raises the least dihedral sine
-// there (see above); `f` gets the plan (the best fan for four tetrahedra). Reads only the
-// tetrahedra around cd.
+// there (see above); `f` gets the plan (the best fan). Reads only the tetrahedra around cd.
 template <class Bound>
 GDR_HD_INLINE bool plan_edge_flip(const TetView& m, int t, int c, int d, const Bound& bound, EdgeFlip& f) {
   f.c = c;
@@ -95,9 +94,9 @@ GDR_HD_INLINE bool plan_edge_flip(const TetView& m, int t, int c, int d, const B
     old_good = old_good && bound(m, f.ring[i], p);
     if (m.tregion && m.tregion[f.ring[i]] != m.tregion[t]) return false;
   }
-  // Each fan (one for three tetrahedra, two distinct ones for four, five for five) whose new tetrahedra are
-  // all positive (exact orient3d: then they fill what the old ones did) and meet the bounds
-  // the old ones met; the one with the largest least sine, if above the old one.
+  // Each fan (one for three tetrahedra, two distinct ones for four, five for five) whose new
+  // tetrahedra are all positive (exact orient3d: then they fill what the old ones did) and
+  // meet the bounds the old ones met; the one with the largest least sine, if above the old.
   double best = old_least;
   int best_apex = -1;
   for (int apex = 0; apex < (f.n == 3 ? 1 : (f.n == 4 ? 2 : 5)); ++apex) {
