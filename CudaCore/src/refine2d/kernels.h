@@ -190,19 +190,6 @@ GDR_HD_INLINE bool circumcentre(const MeshView& m, int t, double* out, double* r
   return *r2 < 1e300 && out[0] == out[0] && out[1] == out[1];
 }
 
-// Locally optimal Steiner points (Erten and Ungor, "Quality triangulations with locally
-// optimal Steiner points", types III and IV): the petal of a bad triangle's shortest edge pq
-// is the disk through p and q of radius |pq| / (2 sin theta) on the triangle's side, whose
-// points see pq at an angle of at least theta and lie in the triangle's circumcircle. Where
-// the circumcentre lies in it, the point goes instead to the centre of a larger empty circle
-// in the petal: from the triangle, up to c.sink_steps times, to the neighbour (not across a
-// subsegment) whose circumcentre lies in the petal with the largest circumradius above the
-// current one, unless it encroaches a subsegment of that neighbour (a point there would only
-// split the subsegment: on a gear at 30 degrees, 296 points against 257). The point still destroys the bad triangle, and it lies farther from every
-// vertex than the circumcentre, so the insertion radius, and with it Ruppert's termination
-// argument, only improves. Fewer points: 2-12% on the data set's maps at 20-30 degrees, one
-// point at a time (Benchmarks/RESULTS.md, ninety-third run). Returns false where the
-// circumcentre is outside the petal (the off-centre's case).
 // Does x encroach a subsegment that is an edge of triangle t?
 GDR_HD_INLINE bool encroaches_own_subseg(const MeshView& m, int t, const double* x, const Criteria& c) {
   for (int k = 0; k < 3; ++k)
@@ -212,6 +199,20 @@ GDR_HD_INLINE bool encroaches_own_subseg(const MeshView& m, int t, const double*
   return false;
 }
 
+// Locally optimal Steiner points (Erten and Ungor, "Quality triangulations with locally
+// optimal Steiner points", types III and IV): the petal of a bad triangle's shortest edge pq
+// is the disk through p and q of radius |pq| / (2 sin theta) on the triangle's side, whose
+// points see pq at an angle of at least theta and lie in the triangle's circumcircle. Where
+// the circumcentre lies in it, the point goes instead to the centre of a larger empty circle
+// in the petal: from the triangle, up to c.sink_steps times, to the neighbour (not across a
+// subsegment) whose circumcentre lies in the petal with the largest circumradius above the
+// current one, unless it encroaches a subsegment of that neighbour (a point there would only
+// split the subsegment: on a gear at 30 degrees, 296 points against 257). The point still
+// destroys the bad triangle, and it lies farther from every vertex than the circumcentre, so
+// the insertion radius, and with it Ruppert's termination argument, only improves. Fewer
+// points: 3-8% on the data set's maps at 20-30 degrees, 6-20% on a generated 1M-segment map
+// (GPU, Benchmarks/RESULTS.md, ninety-fourth run). Returns false where the circumcentre is
+// outside the petal (the off-centre's case).
 GDR_HD_INLINE bool move_to_petal_sink(const MeshView& m, int t, const Criteria& c, double* out,
                                       double r2) {
   const double* a = pt(m, m.tv[3 * t]);
