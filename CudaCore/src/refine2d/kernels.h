@@ -149,6 +149,19 @@ GDR_HD_INLINE int classify_triangle(const MeshView& m, int t, const Criteria& c)
   return in_small_angle(m, p, q) ? kBadProtected : kBad;
 }
 
+// The shortest edge pq of triangle abd and the corner r across it; returns |pq|^2.
+GDR_HD_INLINE double shortest_edge(const double* a, const double* b, const double* d, const double*& p,
+                                   const double*& q, const double*& r) {
+  const double l0 = dist2(b, d), l1 = dist2(d, a), l2 = dist2(a, b);
+  p = b;
+  q = d;
+  r = a;
+  double lmin = l0;
+  if (l1 < lmin) { lmin = l1; p = d; q = a; r = b; }
+  if (l2 < lmin) { lmin = l2; p = a; q = b; r = d; }
+  return lmin;
+}
+
 // Moves `out`, the circumcentre of triangle abd, to its off-centre.
 GDR_HD_INLINE void move_to_offcenter(const double* a, const double* b, const double* d,
                                      const Criteria& c, double* out) {
@@ -159,12 +172,8 @@ GDR_HD_INLINE void move_to_offcenter(const double* a, const double* b, const dou
   // features. (At the height of the circle of radius |pq| / (2 sin theta) through p and q, new
   // edges were only that long, |pq| at 30 degrees: the smallest features' edge length spread
   // over the whole domain, 9.8M points on a contour map that needs 0.34M.)
-  const double l0 = dist2(b, d), l1 = dist2(d, a), l2 = dist2(a, b);
-  const double* p = b;
-  const double* q = d;
-  double lmin = l0;
-  if (l1 < lmin) { lmin = l1; p = d; q = a; }
-  if (l2 < lmin) { lmin = l2; p = a; q = b; }
+  const double *p, *q, *r;
+  const double lmin = shortest_edge(a, b, d, p, q, r);
   const double mx = 0.5 * (p[0] + q[0]), my = 0.5 * (p[1] + q[1]);
   const double cx = out[0] - mx, cy = out[1] - my;
   const double cl = sqrt(cx * cx + cy * cy);
@@ -218,13 +227,8 @@ GDR_HD_INLINE bool move_to_petal_sink(const MeshView& m, int t, const Criteria& 
   const double* a = pt(m, m.tv[3 * t]);
   const double* b = pt(m, m.tv[3 * t + 1]);
   const double* d = pt(m, m.tv[3 * t + 2]);
-  const double l0 = dist2(b, d), l1 = dist2(d, a), l2 = dist2(a, b);
-  const double* p = b;
-  const double* q = d;
-  const double* r = a;
-  double lmin = l0;
-  if (l1 < lmin) { lmin = l1; p = d; q = a; r = b; }
-  if (l2 < lmin) { lmin = l2; p = a; q = b; r = d; }
+  const double *p, *q, *r;
+  const double lmin = shortest_edge(a, b, d, p, q, r);
   // n: unit normal of pq towards r. The petal's centre is |pq| cot(theta) / 2 above pq.
   const double len = sqrt(lmin);
   double nx = (p[1] - q[1]) / len, ny = (q[0] - p[0]) / len;

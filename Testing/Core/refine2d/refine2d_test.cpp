@@ -60,6 +60,14 @@ class Refine2d : public gdr::test::OnBackend {
     return o;
   }
 
+  // mesh() with the design strategies `disabled` switched off (GDR_DISABLE).
+  gdr::Refine2dResult mesh_without(const char* disabled, const Pslg& g, const gdr::Refine2dOptions& o) {
+    setenv("GDR_DISABLE", disabled, 1);
+    gdr::Refine2dResult r = mesh(g, o);
+    unsetenv("GDR_DISABLE");
+    return r;
+  }
+
   // Meshes and validates; returns the result for further checks.
   gdr::Refine2dResult mesh(const Pslg& g, gdr::Refine2dOptions o, bool check_input = true) {
     o.backend = GetParam();
@@ -499,11 +507,8 @@ TEST_P(Refine2d, GradedOrderKeepsAMapNearTriangle) {
   o.min_angle = 30;
   // The graded order is the parallel iteration's (the CPU inserts one point at a time on
   // few threads: Engine::one_at_a_time, smallest first by a queue).
-  setenv("GDR_DISABLE", "one_at_a_time", 1);
-  const auto graded = mesh(g, o);
-  setenv("GDR_DISABLE", "graded,one_at_a_time", 1);
-  const auto plain = mesh(g, o);
-  unsetenv("GDR_DISABLE");
+  const auto graded = mesh_without("one_at_a_time", g, o);
+  const auto plain = mesh_without("graded,one_at_a_time", g, o);
   std::printf("counties map at 30 degrees: %lld Steiner points graded, %lld without\n",
               graded.stats.steiner_points, plain.stats.steiner_points);
   EXPECT_LT(graded.stats.bad_area_percent, 0.03);  // all next to small input angles
@@ -521,9 +526,7 @@ TEST_P(Refine2d, PetalSinksNeedFewerPoints) {
   auto o = options();
   o.min_angle = 30;
   const auto sinks = mesh(g, o);
-  setenv("GDR_DISABLE", "petal_sinks", 1);
-  const auto off = mesh(g, o);
-  unsetenv("GDR_DISABLE");
+  const auto off = mesh_without("petal_sinks", g, o);
   std::printf("wobbly map at 30 degrees: %lld Steiner points with petal sinks, %lld without\n",
               sinks.stats.steiner_points, off.stats.steiner_points);
   EXPECT_LT(sinks.stats.bad_area_percent, 0.02);  // all next to small input angles
