@@ -41,16 +41,19 @@ int cpu_threads();  // OpenMP threads used by the CPU backend
 std::string cpu_device_name(int threads);  // "CPU (N OpenMP threads)", a run's device_name
 
 // For its lifetime, at most `n` OpenMP threads in the parallel loops this thread starts
-// (small meshes: iterations too short to share among many threads).
+// (small meshes: iterations too short to share among many threads). set() changes the
+// limit as a mesh grows, never beyond the threads there were; most() is the largest set.
 class CpuThreadLimit {
  public:
   explicit CpuThreadLimit(int n);
   ~CpuThreadLimit();
+  void set(int n);
+  int most() const { return most_; }
   CpuThreadLimit(const CpuThreadLimit&) = delete;
   CpuThreadLimit& operator=(const CpuThreadLimit&) = delete;
 
  private:
-  int before_;
+  int before_, most_ = 1;
 };
 
 }  // namespace gdr

@@ -484,8 +484,10 @@ m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks, const s
     last = now;
   };
   // TetGen's facet recovery stops on an assertion, or loops, on some inputs (parts turned
-  // to an angle, scan-like surfaces) for some point orders only: each failure is retried
-  // with the points in another order, twice. The time limit is far beyond TetGen's own
+  // to an angle, scan-like surfaces, nearly coplanar fans) for some point orders only: a
+  // failure is retried without TetGen's merging of coplanar facets (M: every triangle
+  // stays a facet of its own, which TetGen's own tetgen -pM got through on fuzzed
+  // cylinders and slabs where plain -p failed in every order), then in two other orders. The time limit is far beyond TetGen's own
   // time (at most about 20 microseconds per point and triangle, typically 6).
   const int np = static_cast<int>(plc.points.size() + seeds.size() / 3);
   const char* limit_env = std::getenv("GDR_TETGEN_SECONDS");  // tests: forces the time limit
@@ -500,15 +502,15 @@ m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks, const s
     return callbacks.abort && callbacks.abort();
   };
   tetgenio out;
-  constexpr int kOrders = 3;
+  constexpr int kAttempts = 4;
   for (int attempt = 0;; ++attempt) {
-    if (attempt > 0 || shuffle_first) std::shuffle(order.begin(), order.end(), std::mt19937(attempt + 1));
+    if (attempt > 1 || shuffle_first) std::shuffle(order.begin(), order.end(), std::mt19937(attempt));
     tetgenio in;
     fill_input(plc, seeds, order, in);
     if (attempt == 0) stamp("fill TetGen input");
     TetGenOutcome outcome;
     try {
-      outcome = run_tetgen_process("pcnO0JQ", in, out, limit, waiting);
+      outcome = run_tetgen_process(attempt == 0 ? "pcnO0JQ" : "pcnO0JQM", in, out, limit, waiting);
     } catch (const Error& e) {
       if (e.status() == Status::OutOfDeviceMemory || e.status() == Status::Aborted) throw;
       if (callbacks.warning)
@@ -523,8 +525,10 @@ m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks, const s
             ? "TetGen did not finish its tetrahedralization within " + std::to_string(static_cast<int>(limit)) + " s"
             : outcome.signal == SIGABRT ? std::string("TetGen stopped on one of its internal assertions (printed on the standard error)")
                                         : "TetGen's process ended on signal " + std::to_string(outcome.signal);
-    if (attempt + 1 == kOrders) throw TetGenAborted(what + ", with the points in " + std::to_string(kOrders) + " orders");
-    if (callbacks.warning) callbacks.warning(what + "; trying again with the points in another order");
+    if (attempt + 1 == kAttempts) throw TetGenAborted(what + ", in " + std::to_string(kAttempts) + " attempts");
+    if (callbacks.warning)
+      callbacks.warning(what + (attempt == 0 ? "; trying again without merging coplanar facets (-M)"
+                                             : "; trying again with the points in another order"));
   }
   if (!std::is_sorted(order.begin(), order.end())) restore_order(order, out);
   stamp("TetGen");

@@ -88,8 +88,11 @@ std::string cpu_device_name(int threads) {
   return "CPU (" + std::to_string(threads) + (threads == 1 ? " OpenMP thread)" : " OpenMP threads)");
 }
 
-CpuThreadLimit::CpuThreadLimit(int n) : before_(omp_get_max_threads()) {
-  omp_set_num_threads(std::max(1, std::min(n, before_)));
+CpuThreadLimit::CpuThreadLimit(int n) : before_(omp_get_max_threads()) { set(n); }
+void CpuThreadLimit::set(int n) {
+  n = std::max(1, std::min(n, before_));
+  most_ = std::max(most_, n);
+  omp_set_num_threads(n);
 }
 CpuThreadLimit::~CpuThreadLimit() { omp_set_num_threads(before_); }
 

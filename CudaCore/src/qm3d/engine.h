@@ -11,6 +11,8 @@
 #include "exec/algorithms.h"
 #include "exec/host_vector.h"
 #include "exec/phase_clock.h"
+#include <functional>
+
 #include "gdr/progress.h"
 #include "gdr/qm3d.h"
 #include "mesh3d/cavity.h"
@@ -53,6 +55,9 @@ struct EngineParams {
   // Sliver removal after refinement (mesh3d/smooth.h): stars with a dihedral angle whose
   // sine is below this are smoothed; 0: none.
   double sliver_sin = 0;
+  // Called on the host before each iteration with the live tetrahedra (the CPU backend's
+  // thread count follows the mesh: a part estimated small can grow a hundredfold).
+  std::function<void(long long tets)> on_iteration;
 };
 
 struct EngineResult {
@@ -150,6 +155,7 @@ struct Engine {
       clock.restart();
       const auto t0 = std::chrono::steady_clock::now();
       const std::vector<PhaseTime> phases_before = trace ? res.phases : std::vector<PhaseTime>{};
+      if (params.on_iteration) params.on_iteration(dm.ntet);
       const std::size_t nl = collect(iter == 0 && params.check_input_boundary);  // line 4
       if (nl == 0) break;                               // line 10
       res.iterations = iter + 1;

@@ -259,7 +259,10 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
   // Small meshes on the CPU: one thread per 2,500 expected tetrahedra. On the H200 machine's
   // 16 threads, 3-5k tetrahedra refined in 0.11-0.31 s, against 0.05-0.17 s on one or two
   // (and 30k tetrahedra in 0.10 s against 0.14 s on four): the iterations are too short.
-  const CpuThreadLimit threads(static_cast<int>(std::min<std::size_t>(estimated / 2500 + 1, 1 << 20)));
+  // The limit follows the mesh as it grows (a thin slab estimated at 1k tetrahedra grew to
+  // 2.9M on one thread).
+  const auto threads_for = [](double tets) { return static_cast<int>(std::min(tets / 2500 + 1, 1e6)); };
+  CpuThreadLimit threads(threads_for(static_cast<double>(estimated)));
   if (st.backend_used == Backend::Gpu) st.device_name = device_info().name;
   else st.device_name = cpu_device_name(cpu_threads());
 
@@ -272,6 +275,8 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
   if (!options.refine) params.max_iterations = 0;
   params.sliver_sin = options.refine ? std::sin(options.sliver_angle * kPi / 180.0) : 0.0;
   params.check_links = std::getenv("GDR_CHECK_LINKS") != nullptr;  // debugging: slow, checks every link each iteration
+  if (st.backend_used == Backend::Cpu)
+    params.on_iteration = [&](long long tets) { threads.set(std::max(threads.most(), threads_for(tets))); };
   Callbacks engine_cb = cb;
   if (cb.progress)  // iterations have no known total: report a slowly saturating fraction
     engine_cb.progress = [&cb, n = 0](double, const std::string& what) mutable {
@@ -334,6 +339,7 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
     st.stalled = er.stalled;
     st.blocked_segments = er.blocked_segments;
     st.phases = er.phases;
+    if (st.backend_used == Backend::Cpu) st.device_name = cpu_device_name(threads.most());
     st.slivers_before = er.slivers.slivers_before;
     st.slivers_after = er.slivers.slivers_after;
     st.sliver_moves = er.slivers.moves;
