@@ -341,6 +341,12 @@ std::vector<int> tet_cells(const Plc& plc, const HostTetMesh& m) {
     if (l < 0) internal("tet " + str(t) + " touches no subface through its flood region");
     cell[t] = l;
   }
+  // A hull face that is not a subface lies outside (cell 0). TetGen has returned a hull
+  // whose faces cut nearly coplanar input triangles along their other diagonal (a tiny
+  // turned cylinder), the input triangles then half covered: refinement crashed on it.
+  for (int x = 0; x < 4 * nt; ++x)
+    if (m.tn[x] < 0 && m.tsub[x] < 0 && cell[x / 4] != 0 && plc.cell_in_domain[cell[x / 4]])
+      internal("tet " + str(x / 4) + " of the domain has a hull face that is not a subface");
   return cell;
 }
 
@@ -502,15 +508,30 @@ m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks, const s
     return callbacks.abort && callbacks.abort();
   };
   tetgenio out;
-  constexpr int kAttempts = 4;
+  HostTetMesh full;
+  std::vector<int> cells;
+  struct Attempt {
+    const char* switches;
+    unsigned shuffle;  // 0: the points in their order, else the seed of a shuffle
+    const char* next;  // what the warning says comes next, should this attempt fail
+  };
+  static constexpr Attempt kAttempts[] = {
+      {"pcnO0JQ", 0, "trying again without merging coplanar facets (-M)"},
+      {"pcnO0JQM", 0, "trying again with the points in another order"},
+      {"pcnO0JQM", 2, "trying again with the points in another order"},
+      {"pcnO0JQM", 3, nullptr},
+  };
+  constexpr int kCount = static_cast<int>(sizeof(kAttempts) / sizeof(kAttempts[0]));
   for (int attempt = 0;; ++attempt) {
-    if (attempt > 1 || shuffle_first) std::shuffle(order.begin(), order.end(), std::mt19937(attempt));
+    const Attempt& a = kAttempts[attempt];
+    std::iota(order.begin(), order.end(), 0);
+    if (a.shuffle || shuffle_first) std::shuffle(order.begin(), order.end(), std::mt19937(a.shuffle + 1));
     tetgenio in;
     fill_input(plc, seeds, order, in);
     if (attempt == 0) stamp("fill TetGen input");
     TetGenOutcome outcome;
     try {
-      outcome = run_tetgen_process(attempt == 0 ? "pcnO0JQ" : "pcnO0JQM", in, out, limit, waiting);
+      outcome = run_tetgen_process(a.switches, in, out, limit, waiting);
     } catch (const Error& e) {
       if (e.status() == Status::OutOfDeviceMemory || e.status() == Status::Aborted) throw;
       if (callbacks.warning)
@@ -519,24 +540,36 @@ m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks, const s
                           "constrained Delaunay everywhere");
       outcome = run_tetgen_process("pcYnO0JQ", in, out, limit, waiting);
     }
-    if (outcome.kind == TetGenOutcome::Done) break;
-    const std::string what =
-        outcome.kind == TetGenOutcome::TimedOut
-            ? "TetGen did not finish its tetrahedralization within " + std::to_string(static_cast<int>(limit)) + " s"
-            : outcome.signal == SIGABRT ? std::string("TetGen stopped on one of its internal assertions (printed on the standard error)")
-                                        : "TetGen's process ended on signal " + std::to_string(outcome.signal);
-    if (attempt + 1 == kAttempts) throw TetGenAborted(what + ", in " + std::to_string(kAttempts) + " attempts");
-    if (callbacks.warning)
-      callbacks.warning(what + (attempt == 0 ? "; trying again without merging coplanar facets (-M)"
-                                             : "; trying again with the points in another order"));
+    std::string what;
+    if (outcome.kind == TetGenOutcome::Done) {
+      if (!std::is_sorted(order.begin(), order.end())) restore_order(order, out);
+      stamp("TetGen");
+      if (callbacks.abort && callbacks.abort()) throw Error(Status::Aborted, "aborted after the initial CDT");
+      // TetGen may also end normally with a surface it did not keep (a subface missing, so
+      // that the inside floods into the outside): that counts as a failed attempt too.
+      try {
+        full = convert(plc, out);
+        stamp("convert");
+        cells = tet_cells(plc, full);
+        stamp("cells");
+        break;
+      } catch (const Error& e) {
+        if (e.status() != Status::InternalError) throw;
+        what = std::string("TetGen's tetrahedralization does not keep the input surface (") + e.what() + ")";
+      }
+    } else {
+      what = outcome.kind == TetGenOutcome::TimedOut
+                 ? "TetGen did not finish its tetrahedralization within " + std::to_string(static_cast<int>(limit)) + " s"
+             : outcome.signal == SIGABRT
+                 ? std::string("TetGen stopped on one of its internal assertions (printed on the standard error)")
+                 : "TetGen's process ended on signal " + std::to_string(outcome.signal);
+    }
+    if (attempt + 1 == kCount)
+      throw TetGenAborted(what + ", in " + std::to_string(kCount) +
+                          " attempts. The restricted Delaunay mesher (gdr rdt; GPU Restricted Delaunay 3D in "
+                          "ParaView) meshes such surfaces without TetGen, approximating them");
+    if (callbacks.warning) callbacks.warning(what + "; " + a.next);
   }
-  if (!std::is_sorted(order.begin(), order.end())) restore_order(order, out);
-  stamp("TetGen");
-  if (callbacks.abort && callbacks.abort()) throw Error(Status::Aborted, "aborted after the initial CDT");
-  const HostTetMesh full = convert(plc, out);
-  stamp("convert");
-  const std::vector<int> cells = tet_cells(plc, full);
-  stamp("cells");
   HostTetMesh m = keep_domain(plc, full, cells);
   stamp("keep domain");
   mark_subsegments(plc, m);
