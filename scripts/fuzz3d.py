@@ -360,7 +360,8 @@ def one_run(gdr, work, seed, timeout, backend="cpu"):
     if p.returncode < 0:
         problem = f"signal {-p.returncode}"
     elif any(p.returncode == rc and (k is None or k in options) and w in err for rc, k, w in KNOWN):
-        problem = "known"
+        problem = "known: " + next(w for rc, k, w in KNOWN
+                                   if p.returncode == rc and (k is None or k in options) and w in err)
     elif p.returncode not in (0, 3):
         problem = f"exit {p.returncode}: {err.strip()[-400:]}"
     elif p.returncode == 3:
@@ -399,10 +400,10 @@ def main():
         t = time.time()
         what, cmd, problem = one_run(a.gdr, a.work, seed, a.timeout, a.backend)
         runs += 1
-        if problem == "known":
+        if problem and problem.startswith("known"):
             known += 1
             if a.verbose:
-                print(f"known seed {seed} ({what}): fails as documented", flush=True)
+                print(f"{problem} - seed {seed} ({what}): {' '.join(cmd[1:2] + cmd[7:])}", flush=True)
         elif problem:
             failures += 1
             print(f"FAIL seed {seed} ({what}): {problem}\n  {' '.join(cmd)}", flush=True)

@@ -274,7 +274,7 @@ void split_pieces_near_other_features(std::vector<double>& xyz, const std::vecto
 // refinement keeps them (rdt3d::KeepFeatures). The points added are appended to xyz, typed
 // kSegmentPoint.
 m3d::HostTetMesh triangulate_with_features(std::vector<double>& xyz, const std::vector<std::array<int, 2>>& ends,
-                                          double feature_min) {
+                                          double feature_min, const m3d::PowerOfTwoScale& scale) {
   const int given = static_cast<int>(xyz.size() / 3);
   std::vector<int> midpoint_segment;  // per appended point
   std::vector<Piece> pieces = grade_small_angles(xyz, ends, feature_min, midpoint_segment);
@@ -290,6 +290,19 @@ m3d::HostTetMesh triangulate_with_features(std::vector<double>& xyz, const std::
       if (edges.count(edge_key(p.a, p.b))) {
         next.push_back(p);
         continue;
+      }
+      // Another point within a piece of feature_min: halving on would go on down to
+      // rounding, the pieces doubling each time (two parts 1e-12 apart hung here).
+      const double* a = &xyz[3 * std::size_t(p.a)];
+      const double* b = &xyz[3 * std::size_t(p.b)];
+      if (m3d::dist2(a, b) < 4 * feature_min * feature_min) {
+        const Point3 at = scale.apply(Point3{a[0], a[1], a[2]}, -1);  // as the user gave it
+        throw Error(Status::InvalidInput,
+                    "a sharp feature edge near (" + std::to_string(at.x) + ", " + std::to_string(at.y) + ", " +
+                        std::to_string(at.z) + ") passes within " + std::to_string(scale.length(feature_min, -1)) +
+                        " (1/64 of the facet size) of other input points, too close to be kept apart "
+                        "(parts nearly touching?): mesh without sharp features (feature angle 0), "
+                        "or with a smaller facet size");
       }
       const int m = split_at_midpoint(xyz, p, midpoint_segment, next);
       const double* q = &xyz[3 * std::size_t(m)];
@@ -433,7 +446,7 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
   // Feature subsegments are split down to 1/64 of the facet size; below, what cannot
   // be met next to a feature (a small angle) is left and reported.
   st.feature_min_length = (facet_size > 0 ? facet_size : diag / 20) / 64;
-  m3d::HostTetMesh mesh = triangulate_with_features(xyz, feature_ends, st.feature_min_length);
+  m3d::HostTetMesh mesh = triangulate_with_features(xyz, feature_ends, st.feature_min_length, scale);
   for (int v = sample; v < sample + 8; ++v) mesh.ptype[v] = m3d::kFreePoint;  // box corners
   st.initial_seconds = since(t0);
   if (aborted()) throw Error(Status::Aborted, "aborted by the caller");
