@@ -58,6 +58,9 @@ struct CheckOptions {
   // exactly coplanar triangles do.
   double coplanar_angle = 0;
   double merge_cone = 10;  // degrees: a merged facet stays within this of its first plane
+  // Refuse triangles of zero area but for rounding too (the tet mesher: TetGen's recovery
+  // of such needles stopped on assertions, or left them half covered).
+  bool refuse_rounding_degenerate = false;
 };
 
 // Checks `surface` and cleans it into a Plc. Throws Error(InvalidInput) for NaN/Inf

@@ -584,17 +584,26 @@ m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks, const s
 
 m3d::HostTetMesh delaunay_tetrahedralization(const std::vector<double>& xyz) {
   const int np = static_cast<int>(xyz.size() / 3);
-  tetgenio in, out;
-  in.firstnumber = 0;
-  in.numberofpoints = np;
-  in.pointlist = new REAL[3 * static_cast<std::size_t>(np)];
-  std::copy(xyz.begin(), xyz.end(), in.pointlist);
+  tetgenio out;
   // Plain Delaunay: n (neighbours), J (keep numbering), Q (quiet). No constraints, so none
-  // of the facet recovery that can fail: no time limit.
-  if (run_tetgen_process("nJQ", in, out, 1e9, {}).kind != TetGenOutcome::Done)
-    internal("TetGen's Delaunay tetrahedralization ended without a result");
+  // of the facet recovery that can loop: no time limit. Its point location still stopped on
+  // an assertion for one order of a box's points (fuzz3d, seed 4001684): two more orders.
+  std::vector<int> order(np);
+  std::iota(order.begin(), order.end(), 0);
+  for (int attempt = 0;; ++attempt) {
+    if (attempt > 0) std::shuffle(order.begin(), order.end(), std::mt19937(attempt));
+    tetgenio in;
+    in.firstnumber = 0;
+    in.numberofpoints = np;
+    in.pointlist = new REAL[3 * static_cast<std::size_t>(np)];
+    for (int k = 0; k < np; ++k)
+      for (int c = 0; c < 3; ++c) in.pointlist[3 * k + c] = xyz[3 * static_cast<std::size_t>(order[k]) + c];
+    if (run_tetgen_process("nJQ", in, out, 1e9, {}).kind == TetGenOutcome::Done) break;
+    if (attempt == 2) internal("TetGen's Delaunay tetrahedralization ended without a result, with the points in 3 orders");
+  }
   if (out.numberofcorners != 4 || !out.neighborlist || out.numberofpoints != np)
     internal("TetGen's Delaunay tetrahedralization returned an unexpected mesh");
+  for (int k = 0; k < 4 * out.numberoftetrahedra; ++k) out.tetrahedronlist[k] = order[out.tetrahedronlist[k]];
   HostTetMesh m;
   m.xyz = xyz;
   m.input_points = np;

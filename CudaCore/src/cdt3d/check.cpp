@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <numeric>
 #include <parallel/algorithm>
 
@@ -153,27 +154,54 @@ void check_dimension(const std::vector<Point3>& p) {
 
 // Triangles in PLC points; degenerate ones refused; exact duplicates (same vertex set)
 // merged into the first.
-void clean_triangles(const Surface& s, const Callbacks& cb, Plc& plc) {
+// A triangle whose corner lies within a few units in the last place of its coordinates of
+// the line through the other two: zero area but for rounding (a midpoint written out).
+bool degenerate_up_to_rounding(const Point3& a, const Point3& b, const Point3& c) {
+  const auto dot3 = [](const double* p, const double* q) { return p[0] * q[0] + p[1] * q[1] + p[2] * q[2]; };
+  const double u[3] = {b.x - a.x, b.y - a.y, b.z - a.z}, v[3] = {c.x - a.x, c.y - a.y, c.z - a.z},
+               w[3] = {c.x - b.x, c.y - b.y, c.z - b.z};
+  const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+  const double longest2 = std::max({dot3(u, u), dot3(v, v), dot3(w, w)});
+  const double height = std::sqrt(dot3(n, n) / longest2);
+  const double magnitude = std::max({std::fabs(a.x), std::fabs(a.y), std::fabs(a.z), std::fabs(b.x),
+                                     std::fabs(b.y), std::fabs(b.z), std::fabs(c.x), std::fabs(c.y),
+                                     std::fabs(c.z), std::sqrt(longest2)});
+  return height < 8 * std::numeric_limits<double>::epsilon() * magnitude;
+}
+
+void clean_triangles(const Surface& s, const CheckOptions& options, const Callbacks& cb, Plc& plc) {
   const long long nt = static_cast<long long>(s.triangles.size());
   std::vector<std::array<int, 3>> tri(nt);
-  std::vector<char> degenerate(nt, 0);
+  std::vector<char> degenerate(nt, 0);  // 1: exactly, 2: up to rounding
 #pragma omp parallel for schedule(static) if (nt > 20000)
   for (long long t = 0; t < nt; ++t) {
     for (int k = 0; k < 3; ++k) tri[t][k] = plc.point_map[s.triangles[t][k]];
     const auto& v = tri[t];
-    degenerate[t] = v[0] == v[1] || v[1] == v[2] || v[0] == v[2] ||
-                    geom::projection_axis(plc.points[v[0]], plc.points[v[1]], plc.points[v[2]]) < 0;
+    const Point3 &a = plc.points[v[0]], &b = plc.points[v[1]], &c = plc.points[v[2]];
+    if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2] || geom::projection_axis(a, b, c) < 0)
+      degenerate[t] = 1;
+    else if (options.refuse_rounding_degenerate && degenerate_up_to_rounding(a, b, c))
+      degenerate[t] = 2;
   }
-  std::vector<std::string> bad;
-  long long count = 0;
-  for (long long t = 0; t < nt; ++t)
-    if (degenerate[t] && count++ < kShown) {
-      const auto& v = s.triangles[t];
-      bad.push_back(str(t) + " (" + str(v[0]) + ", " + str(v[1]) + ", " + str(v[2]) + ")");
-    }
-  if (count)
-    throw Error(Status::InvalidInput,
-                "degenerate triangles (a repeated vertex, or zero area): " + list_items(bad, count));
+  for (const int kind : {1, 2}) {
+    std::vector<std::string> bad;
+    long long count = 0;
+    for (long long t = 0; t < nt; ++t)
+      if (degenerate[t] == kind && count++ < kShown) {
+        const auto& v = s.triangles[t];
+        bad.push_back(str(t) + " (" + str(v[0]) + ", " + str(v[1]) + ", " + str(v[2]) + ")");
+      }
+    if (count && kind == 1)
+      throw Error(Status::InvalidInput,
+                  "degenerate triangles (a repeated vertex, or zero area): " + list_items(bad, count));
+    if (count)
+      throw Error(Status::InvalidInput,
+                  "triangles of zero area but for rounding (a corner within a few units in the last place "
+                  "of its coordinates of the line through the other two): " +
+                      list_items(bad, count) +
+                      ". Remove them and join their neighbours; the restricted Delaunay mesher (gdr rdt, "
+                      "GPU Restricted Delaunay 3D) accepts them");
+  }
 
   std::vector<std::array<int, 4>> key(nt);  // sorted vertices, then the triangle
   for (long long t = 0; t < nt; ++t) {
@@ -433,7 +461,7 @@ Plc check_surface(const Surface& surface, const CheckOptions& options, const Cal
   check_ranges(surface);
   const std::vector<int> origin = merge_points(surface, callbacks, plc);
   check_dimension(plc.points);
-  clean_triangles(surface, callbacks, plc);
+  clean_triangles(surface, options, callbacks, plc);
   stamp("finite, merge, clean");
   plc.holes = surface.holes;
   plc.regions = surface.regions;

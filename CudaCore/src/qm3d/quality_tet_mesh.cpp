@@ -190,6 +190,7 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
   cdt3d::CheckOptions check;
   check.coplanar_angle = options.coplanar_angle;
   check.merge_cone = kMergedFacetCone;
+  check.refuse_rounding_degenerate = true;
   cdt3d::Plc plc = cdt3d::check_surface(input, check, cb);
   st.coplanar_angle_used = options.coplanar_angle;
   st.input_seconds = since(t_start);

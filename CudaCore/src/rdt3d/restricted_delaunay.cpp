@@ -8,6 +8,7 @@
 //      the slivers inside the surface (engine.h, mesh3d/smooth.h);
 //   4. the restricted surface and the tetrahedra inside it, with their quality.
 #include <algorithm>
+#include <cstdio>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -297,12 +298,14 @@ m3d::HostTetMesh triangulate_with_features(std::vector<double>& xyz, const std::
       const double* b = &xyz[3 * std::size_t(p.b)];
       if (m3d::dist2(a, b) < 4 * feature_min * feature_min) {
         const Point3 at = scale.apply(Point3{a[0], a[1], a[2]}, -1);  // as the user gave it
+        char text[160];
+        std::snprintf(text, sizeof text, "a sharp feature edge near (%.9g, %.9g, %.9g) passes within %.3g", at.x,
+                      at.y, at.z, scale.length(feature_min, -1));
         throw Error(Status::InvalidInput,
-                    "a sharp feature edge near (" + std::to_string(at.x) + ", " + std::to_string(at.y) + ", " +
-                        std::to_string(at.z) + ") passes within " + std::to_string(scale.length(feature_min, -1)) +
+                    std::string(text) +
                         " (1/64 of the facet size) of other input points, too close to be kept apart "
-                        "(parts nearly touching?): mesh without sharp features (feature angle 0), "
-                        "or with a smaller facet size");
+                        "(parts nearly touching, or a needle triangle?): mesh without sharp features "
+                        "(feature angle 0), or with a smaller facet size");
       }
       const int m = split_at_midpoint(xyz, p, midpoint_segment, next);
       const double* q = &xyz[3 * std::size_t(m)];
@@ -439,8 +442,14 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
   }
   const int sample = static_cast<int>(xyz.size() / 3);
   st.initial_points = sample;
+  // Margins of 0.5-0.72 diagonals, different at every corner and axis: an exact box of
+  // corners around a turned box's points made TetGen's Delaunay point location stop on an
+  // assertion in every point order (fuzz3d, seed 4001684); a generic octahedron does not.
   for (int c = 0; c < 8; ++c)
-    for (int k = 0; k < 3; ++k) xyz.push_back((c >> k) & 1 ? hi[k] + 0.5 * diag : lo[k] - 0.5 * diag);
+    for (int k = 0; k < 3; ++k) {
+      const double margin = diag * (0.5 + 0.0371 * ((3 * c + k) % 7));
+      xyz.push_back((c >> k) & 1 ? hi[k] + margin : lo[k] - margin);
+    }
   std::vector<std::array<int, 2>> feature_ends;
   for (const auto& e : features.edges) feature_ends.push_back({mesh_id[e[0]], mesh_id[e[1]]});
   // Feature subsegments are split down to 1/64 of the facet size; below, what cannot
