@@ -84,6 +84,8 @@ Backend resolve_backend(Backend requested, std::size_t work_size, std::size_t gp
 
 int cpu_threads() { return omp_get_max_threads(); }
 
+int cpu_threads_for(double tets) { return static_cast<int>(std::min(std::max(tets, 0.0) / 2500 + 1, 1e6)); }
+
 std::string cpu_device_name(int threads) {
   return "CPU (" + std::to_string(threads) + (threads == 1 ? " OpenMP thread)" : " OpenMP threads)");
 }

@@ -257,13 +257,9 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
 
   const std::size_t estimated = estimate_tets(mesh, plc.volume, smallest_volume_bound(options, input));
   st.backend_used = resolve_backend(options.backend, estimated, gpu_min_tets(options));
-  // Small meshes on the CPU: one thread per 2,500 expected tetrahedra. On the H200 machine's
-  // 16 threads, 3-5k tetrahedra refined in 0.11-0.31 s, against 0.05-0.17 s on one or two
-  // (and 30k tetrahedra in 0.10 s against 0.14 s on four): the iterations are too short.
-  // The limit follows the mesh as it grows (a thin slab estimated at 1k tetrahedra grew to
-  // 2.9M on one thread).
-  const auto threads_for = [](double tets) { return static_cast<int>(std::min(tets / 2500 + 1, 1e6)); };
-  CpuThreadLimit threads(threads_for(static_cast<double>(estimated)));
+  // Small meshes on the CPU: few threads (backend.h). The limit follows the mesh as it grows
+  // (a thin slab estimated at 1k tetrahedra grew to 2.9M on one thread).
+  CpuThreadLimit threads(cpu_threads_for(static_cast<double>(estimated)));
   if (st.backend_used == Backend::Gpu) st.device_name = device_info().name;
   else st.device_name = cpu_device_name(cpu_threads());
 
@@ -277,7 +273,7 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
   params.sliver_sin = options.refine ? std::sin(options.sliver_angle * kPi / 180.0) : 0.0;
   params.check_links = std::getenv("GDR_CHECK_LINKS") != nullptr;  // debugging: slow, checks every link each iteration
   if (st.backend_used == Backend::Cpu)
-    params.on_iteration = [&](long long tets) { threads.set(std::max(threads.most(), threads_for(tets))); };
+    params.on_iteration = [&](long long tets) { threads.set(std::max(threads.most(), cpu_threads_for(tets))); };
   Callbacks engine_cb = cb;
   if (cb.progress)  // iterations have no known total: report a slowly saturating fraction
     engine_cb.progress = [&cb, n = 0](double, const std::string& what) mutable {

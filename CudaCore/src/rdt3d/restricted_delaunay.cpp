@@ -515,8 +515,11 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
   // passed --check on the GPU in 4 runs of 4.
   const Backend requested = options.backend;
   st.backend_used = resolve_backend(requested, estimated, 20000 * std::size_t(std::max(1, cpu_threads())));
+  // Small meshes on the CPU: few threads, more as the mesh grows (backend.h).
+  CpuThreadLimit threads(cpu_threads_for(static_cast<double>(estimated)));
   if (st.backend_used == Backend::Gpu) st.device_name = device_info().name;
-  else st.device_name = cpu_device_name(cpu_threads());
+  else
+    params.insertion.on_iteration = [&](long long tets) { threads.set(std::max(threads.most(), cpu_threads_for(tets))); };
 
   Callbacks engine_cb = cb;
   if (cb.progress)
@@ -540,6 +543,7 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
     throw Error(Status::OutOfDeviceMemory, "out of memory during refinement");
   }
   st.refine_seconds = since(t0);
+  if (st.backend_used == Backend::Cpu) st.device_name = cpu_device_name(threads.most());
   st.iterations = er.iterations;
   st.steiner_cap_reached = er.cap_reached;
   st.stalled = er.stalled;
