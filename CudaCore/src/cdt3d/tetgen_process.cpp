@@ -15,6 +15,7 @@
 
 #include <cerrno>
 #include <chrono>
+#include <csignal>
 #include <cstdint>
 #include <cstring>
 #include <new>
@@ -76,6 +77,9 @@ bool write_all(int fd, const void* data, std::size_t bytes) {
 #ifdef __linux__
   prctl(PR_SET_PDEATHSIG, SIGKILL);  // a parent killed meanwhile takes TetGen with it
 #endif
+  // The parent's handlers (ParaView's logger prints a stack trace and "FATL" on SIGABRT)
+  // are not for an assertion in TetGen here: the parent reports it and tries again.
+  for (const int sig : {SIGABRT, SIGSEGV, SIGBUS, SIGFPE, SIGILL}) std::signal(sig, SIG_DFL);
   tetgenio out;
   Header h{};
   h.code = tetrahedralize_code(switches, in, out);
