@@ -10,13 +10,14 @@ the script exit 1.
   scripts/fuzz2d.py build/bin/gdr --seconds 3600 --seed 7 --work /tmp/fuzz   # a long one
 """
 import argparse
-import hashlib
 import math
 import os
 import random
 import subprocess
 import sys
 import time
+
+from fuzzlib import digest, judge, mutate
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 EXAMPLE = os.path.join(HERE, "..", "apps", "gdr", "examples", "gear.poly")
@@ -112,41 +113,6 @@ def scaled(r, pts, holes):
     return [(x * s, y * s) for x, y in pts], [(x * s, y * s) for x, y in holes]
 
 
-# ---- mutations of a file's text ------------------------------------------------------------
-
-EXTREMES = [b"0", b"-0", b"1e308", b"-1e308", b"1e-308", b"5e-324", b"nan", b"inf", b"-1",
-            b"2147483648", b"1e-300", b"1e300", b"0.1", b"3", b"999999999"]
-
-
-def mutate(r, data):
-    tokens = data.split(b" ")
-    for _ in range(r.randint(1, 4)):
-        kind = r.randrange(8)
-        if kind == 0 and tokens:
-            tokens[r.randrange(len(tokens))] = r.choice(EXTREMES)
-        elif kind == 1 and len(tokens) > 1:
-            del tokens[r.randrange(len(tokens))]
-        elif kind == 2 and tokens:
-            i = r.randrange(len(tokens))
-            tokens.insert(i, tokens[i])
-        elif kind == 3:
-            data = b" ".join(tokens)
-            cut = r.randrange(len(data) + 1)
-            tokens = (data[:cut] + bytes([r.randrange(256)]) + data[cut:]).split(b" ")
-        elif kind == 4:
-            tokens = (b"\xef\xbb\xbf" + b" ".join(tokens)).split(b" ")  # UTF-8 BOM
-        elif kind == 5:
-            tokens = b" ".join(tokens).replace(b"\n", b"\r").split(b" ")  # CR-only lines
-        elif kind == 6:
-            data = b" ".join(tokens)
-            cut = r.randrange(len(data) + 1)
-            tokens = (data[:cut] + b"\0" + data[cut:]).split(b" ")
-        else:
-            data = b" ".join(tokens)
-            tokens = data[:r.randrange(len(data) + 1)].split(b" ")  # truncated
-    return b" ".join(tokens)
-
-
 def options(r, max_angle):
     o = ["--min-angle", str(r.choice([a for a in (0, 10, 20, 25, 30, 33) if a <= max_angle]))]
     if r.random() < 0.3:
@@ -160,11 +126,6 @@ def options(r, max_angle):
     if r.random() < 0.2:
         o += ["--max-steiner", str(r.choice([0, 10, 1000]))]
     return o
-
-
-def digest(path):
-    with open(path, "rb") as f:
-        return hashlib.sha256(f.read()).hexdigest()
 
 
 def one_run(gdr, work, seed, timeout, max_angle=33, extra=()):
@@ -189,22 +150,7 @@ def one_run(gdr, work, seed, timeout, max_angle=33, extra=()):
         p = subprocess.run(cmd, capture_output=True, timeout=timeout)
     except subprocess.TimeoutExpired:
         return what, cmd, "timeout"
-    problem = None
-    err = p.stderr.decode(errors="replace")
-    if p.returncode < 0:
-        problem = f"signal {-p.returncode}"
-    elif p.returncode not in (0, 3):
-        problem = f"exit {p.returncode}: {err.strip()[-300:]}"
-    elif p.returncode == 3:
-        lines = [l for l in err.splitlines() if l.startswith("gdr: error:")]
-        if len(lines) != 1 or len(lines[0]) > 1000:
-            problem = f"exit 3 without one short error line: {err[:300]!r}"
-        elif any(ord(c) < 32 and c not in "\t" for c in lines[0]):
-            problem = f"raw control bytes in the message: {lines[0][:200]!r}"
-    elif not os.path.exists(out):
-        problem = "exit 0 without the output"
-    if digest(inp) != before:
-        problem = "the input file changed"
+    problem = judge(p.returncode, p.stderr.decode(errors="replace"), out, inp, before)
     if problem is None:
         for f in (inp, out):
             if os.path.exists(f):

@@ -14,7 +14,6 @@ folder) and makes the script exit 1.
   scripts/fuzz3d.py build/bin/gdr --seconds 300 --backend gpu   # on a machine with a GPU
 """
 import argparse
-import hashlib
 import math
 import os
 import random
@@ -22,6 +21,8 @@ import struct
 import subprocess
 import sys
 import time
+
+from fuzzlib import digest, judge, mutate, rotation
 
 # ---- closed surfaces: (points, triangles), outward ------------------------------------------
 
@@ -194,16 +195,6 @@ def broken(r, pts, tris):
 # ---- placement and files --------------------------------------------------------------------
 
 
-def rotation(r):
-    u1, u2, u3 = r.random(), r.random(), r.random()
-    a, b = math.sqrt(1 - u1), math.sqrt(u1)
-    w, x, y, z = (a * math.sin(2 * math.pi * u2), a * math.cos(2 * math.pi * u2),
-                  b * math.sin(2 * math.pi * u3), b * math.cos(2 * math.pi * u3))
-    return [[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-            [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-            [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]]
-
-
 def placed(r, pts):
     s = 10.0 ** r.choice([0, 0, r.uniform(-8, 8)])
     move = [r.choice([0, r.uniform(-1, 1) * 10 ** r.uniform(0, 6)]) * s for _ in range(3)]
@@ -240,31 +231,6 @@ def surface_file(r, pts, tris):
     for t in tris:  # binary STL: float32 corners, so near-touching parts may touch
         data += struct.pack("<12fH", 0, 0, 0, *[c for i in t for c in corner(i)], 0)
     return "stl", data
-
-
-EXTREMES = [b"0", b"-0", b"1e308", b"-1e308", b"5e-324", b"nan", b"inf", b"-1", b"2147483648",
-            b"1e-300", b"3", b"999999999"]
-
-
-def mutate(r, data):
-    tokens = data.split(b" ")
-    for _ in range(r.randint(1, 3)):
-        kind = r.randrange(5)
-        if kind == 0 and tokens:
-            tokens[r.randrange(len(tokens))] = r.choice(EXTREMES)
-        elif kind == 1 and len(tokens) > 1:
-            del tokens[r.randrange(len(tokens))]
-        elif kind == 2 and tokens:
-            i = r.randrange(len(tokens))
-            tokens.insert(i, tokens[i])
-        elif kind == 3:
-            data = b" ".join(tokens)
-            cut = r.randrange(len(data) + 1)
-            tokens = (data[:cut] + bytes([r.randrange(256)]) + data[cut:]).split(b" ")
-        else:
-            data = b" ".join(tokens)
-            tokens = data[:r.randrange(len(data) + 1)].split(b" ")  # truncated
-    return b" ".join(tokens)
 
 
 # ---- options, as users give them ------------------------------------------------------------
@@ -318,11 +284,6 @@ KNOWN = [
 ]
 
 
-def digest(path):
-    with open(path, "rb") as f:
-        return hashlib.sha256(f.read()).hexdigest()
-
-
 def one_run(gdr, work, seed, timeout, backend="cpu"):
     r = random.Random(seed)
     gen = r.choice(GENERATORS)
@@ -355,25 +316,11 @@ def one_run(gdr, work, seed, timeout, backend="cpu"):
         p = subprocess.run(cmd, capture_output=True, timeout=timeout)
     except subprocess.TimeoutExpired:
         return what, cmd, "timeout"
-    problem = None
     err = p.stderr.decode(errors="replace")
-    if p.returncode < 0:
-        problem = f"signal {-p.returncode}"
-    elif any(p.returncode == rc and (k is None or k in options) and w in err for rc, k, w in KNOWN):
+    problem = judge(p.returncode, err, out, inp, before)
+    if problem and any(p.returncode == rc and (k is None or k in options) and w in err for rc, k, w in KNOWN):
         problem = "known: " + next(w for rc, k, w in KNOWN
                                    if p.returncode == rc and (k is None or k in options) and w in err)
-    elif p.returncode not in (0, 3):
-        problem = f"exit {p.returncode}: {err.strip()[-400:]}"
-    elif p.returncode == 3:
-        lines = [l for l in err.splitlines() if l.startswith("gdr: error:")]
-        if len(lines) != 1 or len(lines[0]) > 1500:
-            problem = f"exit 3 without one short error line: {err[:300]!r}"
-        elif any(ord(c) < 32 and c not in "\t" for c in lines[0]):
-            problem = f"raw control bytes in the message: {lines[0][:200]!r}"
-    elif not os.path.exists(out):
-        problem = "exit 0 without the output"
-    if digest(inp) != before:
-        problem = "the input file changed"
     if problem is None:
         for f in os.listdir(work):
             if f.startswith(f"case{seed}.") or f.startswith(f"case{seed}_"):

@@ -23,6 +23,8 @@ import sys
 import tempfile
 import time
 
+from fuzzlib import rotation
+
 
 def read_off(path):
     tokens = " ".join(line.split("#")[0] for line in open(path)).split()
@@ -58,17 +60,6 @@ def read_poly(path):
         nr = int(lines[at][0])
         coords += [(at + 1 + i, 1) for i in range(nr)]
     return lines, coords
-
-
-def rotation(rng):
-    # A uniformly random rotation from a random unit quaternion.
-    u1, u2, u3 = rng.random(), rng.random(), rng.random()
-    a, b = math.sqrt(1 - u1), math.sqrt(u1)
-    w, x, y, z = (a * math.sin(2 * math.pi * u2), a * math.cos(2 * math.pi * u2),
-                  b * math.sin(2 * math.pi * u3), b * math.cos(2 * math.pi * u3))
-    return [[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-            [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-            [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]]
 
 
 def main():
