@@ -474,6 +474,30 @@ void mark_subsegments(const Plc& plc, HostTetMesh& m) {
   }
 }
 
+// Why TetGen may have failed: triangles that share no vertex yet come closer than its
+// tolerance can separate (1e-8 of the bounding box diagonal), e.g. parts 1e-12 apart.
+std::string close_parts(const Plc& plc) {
+  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  for (const Point3& p : plc.points) {
+    const double* x = geom::xyz(p);
+    for (int d = 0; d < 3; ++d) lo[d] = std::min(lo[d], x[d]), hi[d] = std::max(hi[d], x[d]);
+  }
+  const double diag = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                                (hi[2] - lo[2]) * (hi[2] - lo[2]));
+  std::vector<std::array<int, 2>> pairs;
+  const long long count = find_close_triangles(plc.points, plc.triangles, 1e-8 * diag, 5, pairs);
+  if (count == 0) return "";
+  std::vector<std::string> items;
+  for (const auto& p : pairs) {
+    int a = plc.triangle_origin[p[0]], b = plc.triangle_origin[p[1]];
+    if (a > b) std::swap(a, b);
+    items.push_back(std::to_string(a) + " and " + std::to_string(b));
+  }
+  return "; input triangles that share no corner lie within 1e-8 of the bounding box of each other (parts "
+         "nearly touching?): pairs " +
+         list_items(items, count);
+}
+
 }  // namespace
 
 m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks, const std::vector<double>& seeds) {
@@ -565,8 +589,8 @@ m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks, const s
                  : "TetGen's process ended on signal " + std::to_string(outcome.signal);
     }
     if (attempt + 1 == kCount)
-      throw TetGenAborted(what + ", in " + std::to_string(kCount) +
-                          " attempts. The restricted Delaunay mesher (gdr rdt; GPU Restricted Delaunay 3D in "
+      throw TetGenAborted(what + ", in " + std::to_string(kCount) + " attempts" + close_parts(plc) +
+                          ". The restricted Delaunay mesher (gdr rdt; GPU Restricted Delaunay 3D in "
                           "ParaView) meshes such surfaces without TetGen, approximating them");
     if (callbacks.warning) callbacks.warning(what + "; " + a.next);
   }

@@ -50,6 +50,10 @@ EdgeTable build_edges(const std::vector<std::array<int, 3>>& triangles);
 long long find_clashing_triangles(const std::vector<Point3>& points,
                                   const std::vector<std::array<int, 3>>& triangles,
                                   std::size_t max_pairs, std::vector<std::array<int, 2>>& pairs);
+// The same for pairs that share no vertex and come within `gap` of each other (floating
+// point distances: a diagnosis of what TetGen's tolerances cannot separate, not a predicate).
+long long find_close_triangles(const std::vector<Point3>& points, const std::vector<std::array<int, 3>>& triangles,
+                               double gap, std::size_t max_pairs, std::vector<std::array<int, 2>>& pairs);
 
 // Cells of a closed triangle set, the domain, and its volume (see Plc). Fills
 // plc.triangle_cell, cell_in_domain, cell_region, cell_volume and volume from plc.points,

@@ -26,11 +26,74 @@ struct Grid {
   long long cells() const { return n[0] * n[1] * n[2]; }
 };
 
-}  // namespace
+// Squared distance from p to triangle abc (floating point: a measure, not a predicate).
+double point_triangle_dist2(const double* p, const double* a, const double* b, const double* c) {
+  double ab[3], ac[3], ap[3];
+  for (int d = 0; d < 3; ++d) ab[d] = b[d] - a[d], ac[d] = c[d] - a[d], ap[d] = p[d] - a[d];
+  auto dot = [](const double* u, const double* v) { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; };
+  const double d00 = dot(ab, ab), d01 = dot(ab, ac), d11 = dot(ac, ac), d20 = dot(ap, ab), d21 = dot(ap, ac);
+  const double den = d00 * d11 - d01 * d01;
+  if (den > 0) {
+    const double v = (d11 * d20 - d01 * d21) / den, w = (d00 * d21 - d01 * d20) / den;
+    if (v >= 0 && w >= 0 && v + w <= 1) {
+      double q[3];
+      for (int d = 0; d < 3; ++d) q[d] = a[d] + v * ab[d] + w * ac[d] - p[d];
+      return dot(q, q);
+    }
+  }
+  // Else the nearest point lies on an edge.
+  double best = HUGE_VAL;
+  const double* corner[3] = {a, b, c};
+  for (int e = 0; e < 3; ++e) {
+    const double *u = corner[e], *v = corner[(e + 1) % 3];
+    double uv[3], up[3];
+    for (int d = 0; d < 3; ++d) uv[d] = v[d] - u[d], up[d] = p[d] - u[d];
+    const double len2 = dot(uv, uv);
+    const double t = len2 > 0 ? std::clamp(dot(up, uv) / len2, 0.0, 1.0) : 0.0;
+    double q[3];
+    for (int d = 0; d < 3; ++d) q[d] = u[d] + t * uv[d] - p[d];
+    best = std::min(best, dot(q, q));
+  }
+  return best;
+}
 
-long long find_clashing_triangles(const std::vector<Point3>& points,
-                                  const std::vector<std::array<int, 3>>& triangles,
-                                  std::size_t max_pairs, std::vector<std::array<int, 2>>& pairs) {
+// Squared distance between segments pq and rs.
+double segment_dist2(const double* p, const double* q, const double* r, const double* s) {
+  auto dot = [](const double* u, const double* v) { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; };
+  double d1[3], d2[3], w[3];
+  for (int d = 0; d < 3; ++d) d1[d] = q[d] - p[d], d2[d] = s[d] - r[d], w[d] = p[d] - r[d];
+  const double a = dot(d1, d1), e = dot(d2, d2), f = dot(d2, w), c = dot(d1, w), b = dot(d1, d2);
+  const double den = a * e - b * b;
+  double t1 = den > 0 ? std::clamp((b * f - c * e) / den, 0.0, 1.0) : 0.0;
+  double t2 = e > 0 ? (b * t1 + f) / e : 0.0;
+  if (t2 < 0 || t2 > 1) {
+    t2 = std::clamp(t2, 0.0, 1.0);
+    t1 = a > 0 ? std::clamp((b * t2 - c) / a, 0.0, 1.0) : 0.0;
+  }
+  double x[3];
+  for (int d = 0; d < 3; ++d) x[d] = p[d] + t1 * d1[d] - r[d] - t2 * d2[d];
+  return dot(x, x);
+}
+
+// Whether triangles t1 and t2, sharing no vertex, come within `gap` of each other.
+bool triangles_within(const std::vector<Point3>& pts, const std::array<int, 3>& t1, const std::array<int, 3>& t2,
+                      double gap) {
+  for (int a : t1)
+    for (int b : t2)
+      if (a == b) return false;  // neighbours: their distance is 0 by design
+  const double g2 = gap * gap;
+  auto at = [&](int v) { return geom::xyz(pts[v]); };
+  for (int k = 0; k < 3; ++k) {
+    if (point_triangle_dist2(at(t1[k]), at(t2[0]), at(t2[1]), at(t2[2])) < g2) return true;
+    if (point_triangle_dist2(at(t2[k]), at(t1[0]), at(t1[1]), at(t1[2])) < g2) return true;
+    for (int m = 0; m < 3; ++m)
+      if (segment_dist2(at(t1[k]), at(t1[(k + 1) % 3]), at(t2[m]), at(t2[(m + 1) % 3])) < g2) return true;
+  }
+  return false;
+}
+
+long long find_triangle_pairs(const std::vector<Point3>& points, const std::vector<std::array<int, 3>>& triangles,
+                              double gap, std::size_t max_pairs, std::vector<std::array<int, 2>>& pairs) {
   pairs.clear();
   const long long nt = static_cast<long long>(triangles.size());
   if (nt < 2) return 0;
@@ -46,8 +109,8 @@ long long find_clashing_triangles(const std::vector<Point3>& points,
     for (int k = 0; k < 3; ++k) {
       const double* p = geom::xyz(points[triangles[t][k]]);
       for (int d = 0; d < 3; ++d) {
-        b.lo[d] = std::min(b.lo[d], p[d]);
-        b.hi[d] = std::max(b.hi[d], p[d]);
+        b.lo[d] = std::min(b.lo[d], p[d] - gap);
+        b.hi[d] = std::max(b.hi[d], p[d] + gap);
       }
     }
     double e = 0;
@@ -142,7 +205,9 @@ long long find_clashing_triangles(const std::vector<Point3>& points,
         for (int b = a + 1; b < count[c + 1]; ++b) {
           const int j = items[b];
           if (!overlap(i, j) || first_common_cell(i, j) != c) continue;
-          if (!geom::triangles_clash(points, triangles[i], triangles[j])) continue;
+          if (gap > 0 ? !triangles_within(points, triangles[i], triangles[j], gap)
+                      : !geom::triangles_clash(points, triangles[i], triangles[j]))
+            continue;
           ++found;
           if (mine.size() < keep) mine.push_back({i, j});
         }
@@ -157,6 +222,19 @@ long long find_clashing_triangles(const std::vector<Point3>& points,
   std::sort(pairs.begin(), pairs.end());
   if (pairs.size() > max_pairs) pairs.resize(max_pairs);
   return total;
+}
+
+}  // namespace
+
+long long find_clashing_triangles(const std::vector<Point3>& points,
+                                  const std::vector<std::array<int, 3>>& triangles,
+                                  std::size_t max_pairs, std::vector<std::array<int, 2>>& pairs) {
+  return find_triangle_pairs(points, triangles, 0, max_pairs, pairs);
+}
+
+long long find_close_triangles(const std::vector<Point3>& points, const std::vector<std::array<int, 3>>& triangles,
+                               double gap, std::size_t max_pairs, std::vector<std::array<int, 2>>& pairs) {
+  return find_triangle_pairs(points, triangles, gap, max_pairs, pairs);
 }
 
 EdgeTable build_edges(const std::vector<std::array<int, 3>>& triangles) {
