@@ -40,11 +40,11 @@ void prewarm_gpu(Backend backend, std::size_t work_size, std::size_t auto_min_wo
 int cpu_threads();  // OpenMP threads used by the CPU backend
 std::string cpu_device_name(int threads);  // "CPU (N OpenMP threads)", a run's device_name
 
-// The CPU backend's threads for a mesh of `tets` tetrahedra: one per 2,500. On the H200
-// machine's 16 threads, 3-5k tetrahedra refined in 0.11-0.31 s, against 0.05-0.17 s on one
-// or two (and 30k in 0.10 s against 0.14 s on four): iterations that short do not share
-// well; gdr rdt on a small part took 0.87 s on 16 threads, 0.45 s on 4 (2026-11-28).
-int cpu_threads_for(double tets);
+// gQM3d's CPU threads for a mesh of `tets` tetrahedra: one per 2,500 (GDR_TETS_PER_THREAD
+// overrides it, for measurements). On the H200 machine's 16 threads, 3-5k tetrahedra
+// refined in 0.11-0.31 s, against 0.05-0.17 s on one or two (and 30k in 0.10 s against
+// 0.14 s on four): iterations that short do not share well.
+int cpu_threads_for(double tets, double per_thread = 2500);
 
 // For its lifetime, at most `n` OpenMP threads in the parallel loops this thread starts
 // (small meshes: iterations too short to share among many threads). set() changes the

@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <atomic>
 #include <cctype>
 #include <future>
@@ -84,7 +85,11 @@ Backend resolve_backend(Backend requested, std::size_t work_size, std::size_t gp
 
 int cpu_threads() { return omp_get_max_threads(); }
 
-int cpu_threads_for(double tets) { return static_cast<int>(std::min(std::max(tets, 0.0) / 2500 + 1, 1e6)); }
+int cpu_threads_for(double tets, double per_thread) {
+  static const double measured = std::getenv("GDR_TETS_PER_THREAD") ? std::atof(std::getenv("GDR_TETS_PER_THREAD")) : 0;
+  if (measured > 0) per_thread = measured;  // measurements of the rule itself
+  return static_cast<int>(std::min(std::max(tets, 0.0) / per_thread + 1, 1e6));
+}
 
 std::string cpu_device_name(int threads) {
   return "CPU (" + std::to_string(threads) + (threads == 1 ? " OpenMP thread)" : " OpenMP threads)");

@@ -117,7 +117,6 @@ struct Engine {
     for (int iter = 0; iter < params.insertion.max_iterations; ++iter) {
       core.check_abort();
       core.clock.restart();
-      if (params.insertion.on_iteration) params.insertion.on_iteration(dm.ntet);
       std::size_t nl = collect();  // line 4: bad facets and bad tetrahedra, one list
       // The manifold criterion, once every facet and cell meets the others (as CGAL's).
       if (nl == 0 && params.manifold && manifold_rounds < kManifoldRounds && non_manifold(true) > 0) {
