@@ -280,7 +280,7 @@ KNOWN = [
     (1, "--feature-angle", "feature subsegment(s) are not edges of the surface"),
     # issue 10: TetGen 1.5.0 (gdr tet's initial CDT) fails on some turned cylinders of many
     # sides, as its own command line does; the error says so and names gdr rdt
-    (5, None, "attempts. The restricted Delaunay mesher"),
+    (5, None, "meshes such surfaces without TetGen"),
 ]
 
 

@@ -44,6 +44,7 @@
 #include "cdt3d/tetgen_process.h"
 #include "gdr/error.h"
 #include "mesh3d/tet_topology.h"
+#include "predicates/predicates.h"
 
 namespace gdr::cdt3d {
 namespace {
@@ -474,6 +475,22 @@ void mark_subsegments(const Plc& plc, HostTetMesh& m) {
   }
 }
 
+// Faces between two tetrahedra that are not subfaces and not locally Delaunay (exact
+// insphere). TetGen's -M result on two parts 1e-12 apart had one.
+long long non_delaunay_faces(const HostTetMesh& m) {
+  const long long n4 = 4LL * m.tets();
+  long long count = 0;
+  auto at = [&](int v) { return &m.xyz[3 * static_cast<std::size_t>(v)]; };
+#pragma omp parallel for reduction(+ : count) schedule(static) if (n4 > 80000)
+  for (long long x = 0; x < n4; ++x) {
+    const int y = m.tn[x];
+    if (y < 0 || y < x || m.tsub[x] >= 0) continue;  // each interior face once
+    const int* t = &m.tv[4 * (x / 4)];
+    count += pred::insphere(at(t[0]), at(t[1]), at(t[2]), at(t[3]), at(m.tv[4 * (y / 4) + y % 4])) > 0;
+  }
+  return count;
+}
+
 // Why TetGen may have failed: triangles that share no vertex yet come closer than its
 // tolerance can separate (1e-8 of the bounding box diagonal), e.g. parts 1e-12 apart.
 std::string close_parts(const Plc& plc) {
@@ -554,6 +571,7 @@ m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks, const s
     fill_input(plc, seeds, order, in);
     if (attempt == 0) stamp("fill TetGen input");
     TetGenOutcome outcome;
+    bool unsplit = false;  // -Y: not constrained Delaunay everywhere, as the warning says
     try {
       outcome = run_tetgen_process(a.switches, in, out, limit, waiting);
     } catch (const Error& e) {
@@ -563,6 +581,7 @@ m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks, const s
                           "); retrying with the input surface kept unsplit (-Y): the result may not be "
                           "constrained Delaunay everywhere");
       outcome = run_tetgen_process("pcYnO0JQ", in, out, limit, waiting);
+      unsplit = true;
     }
     std::string what;
     if (outcome.kind == TetGenOutcome::Done) {
@@ -576,7 +595,11 @@ m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks, const s
         stamp("convert");
         cells = tet_cells(plc, full);
         stamp("cells");
-        break;
+        // The retries' results are checked for the Delaunay property too (the first
+        // attempt's, on large inputs, is not: its cost is then a tenth of TetGen's).
+        const long long bad = attempt > 0 && !unsplit ? non_delaunay_faces(full) : 0;
+        if (bad == 0) break;
+        what = "TetGen's tetrahedralization is not constrained Delaunay (" + std::to_string(bad) + " faces)";
       } catch (const Error& e) {
         if (e.status() != Status::InternalError) throw;
         what = std::string("TetGen's tetrahedralization does not keep the input surface (") + e.what() + ")";
