@@ -15,9 +15,8 @@ import os
 import random
 import subprocess
 import sys
-import time
 
-from fuzzlib import digest, judge, mutate
+from fuzzlib import add_arguments, digest, fuzz, judge, mutate
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 EXAMPLE = os.path.join(HERE, "..", "apps", "gdr", "examples", "gear.poly")
@@ -160,29 +159,12 @@ def one_run(gdr, work, seed, timeout, max_angle=33, extra=()):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("gdr")
-    ap.add_argument("--seed", type=int, default=1)
-    ap.add_argument("--seconds", type=float, default=60)
-    ap.add_argument("--runs", type=int, default=0, help="stop after this many runs (0: by time)")
-    ap.add_argument("--timeout", type=float, default=60, help="seconds per run")
-    ap.add_argument("--work", default="fuzz2d-work")
+    add_arguments(ap, "fuzz2d", timeout=60)
     ap.add_argument("--max-angle", type=float, default=33,
                     help="largest minimum angle tried (33: Triangle's practical limit)")
     ap.add_argument("--extra", default="", help="more gdr options for every run, e.g. '--cdt parallel'")
     a = ap.parse_args()
-    os.makedirs(a.work, exist_ok=True)
-    start = time.time()
-    runs = failures = 0
-    seed = a.seed * 1000003
-    while (a.runs and runs < a.runs) or (not a.runs and time.time() - start < a.seconds):
-        what, cmd, problem = one_run(a.gdr, a.work, seed, a.timeout, a.max_angle, a.extra.split())
-        runs += 1
-        if problem:
-            failures += 1
-            print(f"FAIL seed {seed} ({what}): {problem}\n  {' '.join(cmd)}", flush=True)
-        seed += 1
-    print(f"fuzz2d: {runs} runs, {failures} failures, {time.time() - start:.0f} s")
-    return 1 if failures else 0
+    return fuzz("fuzz2d", a, lambda seed: one_run(a.gdr, a.work, seed, a.timeout, a.max_angle, a.extra.split()))
 
 
 if __name__ == "__main__":

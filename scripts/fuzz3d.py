@@ -20,9 +20,8 @@ import random
 import struct
 import subprocess
 import sys
-import time
 
-from fuzzlib import digest, judge, mutate, rotation
+from fuzzlib import add_arguments, digest, fuzz, judge, mutate, rotation
 
 # ---- closed surfaces: (points, triangles), outward ------------------------------------------
 
@@ -330,36 +329,10 @@ def one_run(gdr, work, seed, timeout, backend="cpu"):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("gdr")
-    ap.add_argument("--seed", type=int, default=1)
-    ap.add_argument("--seconds", type=float, default=60)
-    ap.add_argument("--runs", type=int, default=0, help="stop after this many runs (0: by time)")
-    ap.add_argument("--timeout", type=float, default=120, help="seconds per run")
-    ap.add_argument("--work", default="fuzz3d-work")
-    ap.add_argument("--verbose", action="store_true", help="print every run")
+    add_arguments(ap, "fuzz3d", timeout=120)
     ap.add_argument("--backend", default="cpu", choices=["cpu", "gpu"])
     a = ap.parse_args()
-    os.makedirs(a.work, exist_ok=True)
-    start = time.time()
-    runs = failures = known = 0
-    seed = a.seed * 1000003
-    while (a.runs and runs < a.runs) or (not a.runs and time.time() - start < a.seconds):
-        t = time.time()
-        what, cmd, problem = one_run(a.gdr, a.work, seed, a.timeout, a.backend)
-        runs += 1
-        if problem and problem.startswith("known"):
-            known += 1
-            if a.verbose:
-                print(f"{problem} - seed {seed} ({what}): {' '.join(cmd[1:2] + cmd[7:])}", flush=True)
-        elif problem:
-            failures += 1
-            print(f"FAIL seed {seed} ({what}): {problem}\n  {' '.join(cmd)}", flush=True)
-        elif a.verbose:
-            print(f"ok seed {seed} ({what}) {time.time() - t:.1f} s: {' '.join(cmd[1:2] + cmd[7:])}",
-                  flush=True)
-        seed += 1
-    print(f"fuzz3d: {runs} runs, {failures} failures, {known} known limitations, {time.time() - start:.0f} s")
-    return 1 if failures else 0
+    return fuzz("fuzz3d", a, lambda seed: one_run(a.gdr, a.work, seed, a.timeout, a.backend))
 
 
 if __name__ == "__main__":

@@ -4,6 +4,7 @@ never a signal, another exit code, or a changed input file)."""
 import hashlib
 import math
 import os
+import time
 
 EXTREMES = [b"0", b"-0", b"1e308", b"-1e308", b"1e-308", b"5e-324", b"nan", b"inf", b"-1",
             b"2147483648", b"1e-300", b"1e300", b"0.1", b"3", b"999999999"]
@@ -75,3 +76,41 @@ def judge(returncode, err, out, inp, before):
     if digest(inp) != before:
         problem = "the input file changed"
     return problem
+
+
+def add_arguments(ap, name, timeout):
+    """The command line every fuzzer shares."""
+    ap.add_argument("gdr")
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--seconds", type=float, default=60)
+    ap.add_argument("--runs", type=int, default=0, help="stop after this many runs (0: by time)")
+    ap.add_argument("--timeout", type=float, default=timeout, help="seconds per run")
+    ap.add_argument("--work", default=f"{name}-work")
+    ap.add_argument("--verbose", action="store_true", help="print every run")
+
+
+def fuzz(name, a, one_run):
+    """Runs one_run(seed) -> (what, cmd, problem) from seed a.seed * 1000003 on, for a.runs
+    runs or a.seconds; problems starting with "known" are counted apart. Exit status: 1
+    when a run failed."""
+    os.makedirs(a.work, exist_ok=True)
+    start = time.time()
+    runs = failures = known = 0
+    seed = a.seed * 1000003
+    while (a.runs and runs < a.runs) or (not a.runs and time.time() - start < a.seconds):
+        t = time.time()
+        what, cmd, problem = one_run(seed)
+        runs += 1
+        shown = " ".join(cmd[1:2] + cmd[7:])  # the mesher, the backend and the options
+        if problem and problem.startswith("known"):
+            known += 1
+            if a.verbose:
+                print(f"{problem} - seed {seed} ({what}): {shown}", flush=True)
+        elif problem:
+            failures += 1
+            print(f"FAIL seed {seed} ({what}): {problem}\n  {' '.join(cmd)}", flush=True)
+        elif a.verbose:
+            print(f"ok seed {seed} ({what}) {time.time() - t:.1f} s: {shown}", flush=True)
+        seed += 1
+    print(f"{name}: {runs} runs, {failures} failures, {known} known limitations, {time.time() - start:.0f} s")
+    return 1 if failures else 0
