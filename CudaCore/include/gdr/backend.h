@@ -44,7 +44,7 @@ std::string cpu_device_name(int threads);  // "CPU (N OpenMP threads)", a run's 
 // overrides it, for measurements). On the H200 machine's 16 threads, 3-5k tetrahedra
 // refined in 0.11-0.31 s, against 0.05-0.17 s on one or two (and 30k in 0.10 s against
 // 0.14 s on four): iterations that short do not share well.
-int cpu_threads_for(double tets, double per_thread = 2500);
+int cpu_threads_for(double tets);
 
 // For its lifetime, at most `n` OpenMP threads in the parallel loops this thread starts
 // (small meshes: iterations too short to share among many threads). set() changes the

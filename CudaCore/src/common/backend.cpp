@@ -85,9 +85,9 @@ Backend resolve_backend(Backend requested, std::size_t work_size, std::size_t gp
 
 int cpu_threads() { return omp_get_max_threads(); }
 
-int cpu_threads_for(double tets, double per_thread) {
+int cpu_threads_for(double tets) {
   static const double measured = std::getenv("GDR_TETS_PER_THREAD") ? std::atof(std::getenv("GDR_TETS_PER_THREAD")) : 0;
-  if (measured > 0) per_thread = measured;  // measurements of the rule itself
+  const double per_thread = measured > 0 ? measured : 2500;  // the override: measurements of the rule itself
   return static_cast<int>(std::min(std::max(tets, 0.0) / per_thread + 1, 1e6));
 }
 
