@@ -346,7 +346,7 @@ std::vector<int> tet_cells(const Plc& plc, const HostTetMesh& m) {
   // whose faces cut nearly coplanar input triangles along their other diagonal (a tiny
   // turned cylinder), the input triangles then half covered: refinement crashed on it.
   for (int x = 0; x < 4 * nt; ++x)
-    if (m.tn[x] < 0 && m.tsub[x] < 0 && cell[x / 4] != 0 && plc.cell_in_domain[cell[x / 4]])
+    if (m.tn[x] < 0 && m.tsub[x] < 0 && plc.cell_in_domain[cell[x / 4]])
       internal("tet " + str(x / 4) + " of the domain has a hull face that is not a subface");
   return cell;
 }
@@ -534,8 +534,9 @@ m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks, const s
   // to an angle, scan-like surfaces, nearly coplanar fans) for some point orders only: a
   // failure is retried without TetGen's merging of coplanar facets (M: every triangle
   // stays a facet of its own, which TetGen's own tetgen -pM got through on fuzzed
-  // cylinders and slabs where plain -p failed in every order), then in two other orders. The time limit is far beyond TetGen's own
-  // time (at most about 20 microseconds per point and triangle, typically 6).
+  // cylinders and slabs where plain -p failed in every order), then in two other orders.
+  // The time limit is far beyond TetGen's own time (at most about 20 microseconds per
+  // point and triangle, typically 6).
   const int np = static_cast<int>(plc.points.size() + seeds.size() / 3);
   const char* limit_env = std::getenv("GDR_TETGEN_SECONDS");  // tests: forces the time limit
   const double limit = limit_env ? std::atof(limit_env) : 10.0 + 1e-4 * (np + static_cast<double>(plc.triangles.size()));
@@ -553,7 +554,7 @@ m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks, const s
   std::vector<int> cells;
   struct Attempt {
     const char* switches;
-    unsigned shuffle;  // 0: the points in their order, else the seed of a shuffle
+    unsigned shuffle;  // 0: the points in their order, else a shuffle (seed shuffle + 1)
     const char* next;  // what the warning says comes next, should this attempt fail
   };
   static constexpr Attempt kAttempts[] = {
