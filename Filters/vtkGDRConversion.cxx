@@ -574,6 +574,7 @@ void vtkGDRConversion::AddStats(const gdr::RestrictedDelaunayStats& stats, vtkFi
   AddValue<vtkIdTypeArray>(fd, "Corners", static_cast<vtkIdType>(stats.corners));
   AddValue<vtkIdTypeArray>(fd, "FeaturePoints", static_cast<vtkIdType>(stats.feature_points));
   AddValue<vtkIdTypeArray>(fd, "FeaturesOffSurface", static_cast<vtkIdType>(stats.features_off_surface));
+  AddValue<vtkIdTypeArray>(fd, "FeatureRelabelled", static_cast<vtkIdType>(stats.feature_relabelled));
   AddValue<vtkIdTypeArray>(fd, "BadFacets", static_cast<vtkIdType>(stats.bad_facets));
   AddValue<vtkIdTypeArray>(fd, "BadTetrahedra", static_cast<vtkIdType>(stats.bad_tets));
   AddValue<vtkIdTypeArray>(fd, "FacetsLeftOut", static_cast<vtkIdType>(stats.facets_left_out));

@@ -12,6 +12,7 @@ folder) and makes the script exit 1.
   scripts/fuzz3d.py build/bin/gdr --seed 3 --runs 30        # the short run of CI
   scripts/fuzz3d.py build/bin/gdr --seconds 3600 --seed 7 --work /tmp/fuzz3d
   scripts/fuzz3d.py build/bin/gdr --seconds 300 --backend gpu   # on a machine with a GPU
+  scripts/fuzz3d.py build/bin/gdr --case 12000649               # one case again, by its seed
 """
 import argparse
 import math

@@ -87,6 +87,7 @@ def add_arguments(ap, name, timeout):
     ap.add_argument("--timeout", type=float, default=timeout, help="seconds per run")
     ap.add_argument("--work", default=f"{name}-work")
     ap.add_argument("--verbose", action="store_true", help="print every run")
+    ap.add_argument("--case", type=int, help="run the one case of this seed (as a FAIL line names it)")
 
 
 def fuzz(name, a, one_run):
@@ -97,6 +98,8 @@ def fuzz(name, a, one_run):
     start = time.time()
     runs = failures = known = 0
     seed = a.seed * 1000003
+    if a.case is not None:
+        seed, a.runs, a.verbose = a.case, 1, True
     while (a.runs and runs < a.runs) or (not a.runs and time.time() - start < a.seconds):
         t = time.time()
         what, cmd, problem = one_run(seed)

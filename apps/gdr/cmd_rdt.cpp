@@ -299,6 +299,9 @@ void print_summary(const ArgsRdt& a, const RestrictedDelaunayResult& r, const Re
     info.row({"features", with_commas(s.feature_edges) + " input edges, " + with_commas(s.corners) + " corners (feature angle " +
                               fixed(s.feature_angle, 1) + " deg); " + with_commas(s.feature_points) +
                               " output points on them" +
+                              (s.feature_relabelled > 0 ? "; " + with_commas(s.feature_relabelled) +
+                                                              " tetrahedra changed side to keep them"
+                                                        : std::string()) +
                               (s.features_off_surface > 0
                                    ? "; " + with_commas(s.features_off_surface) + " subsegments off the surface"
                                    : std::string())});
@@ -415,6 +418,7 @@ void write_stats_json(const ArgsRdt& a, const RestrictedDelaunayResult& r, const
   j.field("non_manifold_facets", s.non_manifold_facets);
   j.field("pinch_relabelled", s.pinch_relabelled);
   j.field("features_off_surface", s.features_off_surface);
+  j.field("feature_relabelled", s.feature_relabelled);
   j.field("manifold_min_size", s.manifold_min_size);
   j.field("min_facet_angle_deg", s.min_facet_angle_deg);
   j.field("max_facet_size", s.max_facet_size);

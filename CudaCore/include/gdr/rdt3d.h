@@ -74,8 +74,10 @@ struct RestrictedDelaunayStats {
   long long feature_edges = 0, corners = 0;  // input feature edges and corners (FeatureAngle)
   long long feature_points = 0;            // output vertices on features (corners included)
   // Feature subsegments that no surface facet holds: there the surface cuts across the sharp
-  // edge (an acute crease sampled unevenly on its two sides); reported, and --check fails.
+  // edge (an acute crease sampled unevenly on its two sides) and relabelling the tetrahedra
+  // round them (rdt3d/feature_sides.h) did not bring it back; reported, and --check fails.
   long long features_off_surface = 0;
+  long long feature_relabelled = 0;        // tetrahedra that changed side to keep feature subsegments
   long long steiner_points = 0;            // inserted by the refinement
   long long triangulation_points = 0, triangulation_tets = 0;  // the whole Delaunay triangulation
   long long output_points = 0, output_tets = 0, output_triangles = 0;

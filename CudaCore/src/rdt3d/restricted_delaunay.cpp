@@ -21,12 +21,15 @@
 
 #include "cdt3d/cdt3d.h"
 #include "cdt3d/internal.h"
+#include "common/trace.h"
 #include "gdr/rdt3d.h"
 #include "gdr/validate.h"
+#include "mesh3d/orient_surface.h"
 #include "mesh3d/scale.h"
 #include "mesh3d/tet_topology.h"
 #include "qm3d/engine_dispatch.h"
 #include "rdt3d/engine_dispatch.h"
+#include "rdt3d/feature_sides.h"
 #include "rdt3d/features.h"
 #include "rdt3d/pinches.h"
 
@@ -558,10 +561,6 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
   if (st.backend_used == Backend::Gpu) st.peak_device_bytes = er.peak_bytes;
   if (er.cap_reached && cb.warning)
     cb.warning("refinement stopped at the Steiner point cap (" + std::to_string(st.steiner_cap) + ")");
-  if (st.features_off_surface > 0 && cb.warning)
-    cb.warning(std::to_string(st.features_off_surface) +
-               " feature subsegment(s) are not edges of the surface: it cuts across the sharp edges there "
-               "(next to corners and acute creases)");
   if (aborted()) throw Error(Status::Aborted, "aborted by the caller");
 
   // The output, read off the final triangulation with the engine's own predicates.
@@ -599,6 +598,18 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
     st.pinch_relabelled = pinches.relabelled;
     pinch_pass = true;
   }
+  // Feature subsegments the surface cuts across: the tetrahedra round them take the sides
+  // of the input's solid next to them (feature_sides.h).
+  if (c.inside && st.features_off_surface > 0) {
+    pinches.moved.assign(m.ntet, 0);
+    const rdt3d::FeatureSides fs = rdt3d::mend_lost_features(m, c, tree, pinches.moved);
+    st.features_off_surface -= fs.mended;
+    st.feature_relabelled = fs.relabelled;
+  }
+  if (st.features_off_surface > 0 && cb.warning)
+    cb.warning(std::to_string(st.features_off_surface) +
+               " feature subsegment(s) are not edges of the surface: it cuts across the sharp edges there "
+               "(next to corners and acute creases)");
 
   std::vector<int> new_id(m.npts, -1);
   TetMesh& tm = result.mesh;
@@ -639,6 +650,7 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
     double angle, size, dist, area;
     unsigned char bad;
     bool ok;
+    m3d::OrientVote vote;  // how sure its orientation is (mesh3d/orient_surface.h)
   };
   std::vector<long long> first(static_cast<std::size_t>(m.ntet) + 1, 0);
 #pragma omp parallel for
@@ -692,6 +704,7 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
       bool flip;
       if (c.inside && in_t != in_u) {
         flip = !in_t;
+        fc.vote.certain = true;
       } else {
         // Along the input triangle's normal (outward when the input's volume is positive).
         const double* a = rdt3d::corner(tree, tri, 0);
@@ -707,6 +720,7 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
                      e2[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
         m3d::cross3(e1, e2, w);
         flip = (m3d::dot3(n, w) < 0) != (c.inside && signed_volume < 0);
+        fc.vote.weight = std::fabs(m3d::dot3(n, w)) / std::max(std::sqrt(m3d::dot3(n, n)), 1e-300);  // area x cosine
       }
       if (flip) std::swap(v[1], v[2]);
       const Point3 a{out.xyz[3 * v[0]], out.xyz[3 * v[0] + 1], out.xyz[3 * v[0] + 2]};
@@ -732,6 +746,26 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
       fc.area = 0.5 * std::sqrt(m3d::dot3(nx, nx));
       fc.bad = off_surface || rdt3d::facet_is_bad(ms, c, t, f, x) ? 1 : 0;
     }
+  }
+  // Facets oriented by the input's normals: the same way across each patch of the surface.
+  TraceSteps steps("rdt output");
+  steps("facets");
+  if (std::any_of(facets.begin(), facets.end(), [](const Facet& fc) { return fc.ok && !fc.vote.certain; })) {
+    std::vector<int> tri;
+    std::vector<m3d::OrientVote> votes;
+    for (const Facet& fc : facets)
+      if (fc.ok) {
+        tri.insert(tri.end(), fc.v, fc.v + 3);
+        votes.push_back(fc.vote);
+      }
+    const m3d::OrientResult o = m3d::orient_consistently(tri, votes);
+    std::size_t k = 0;
+    for (Facet& fc : facets)
+      if (fc.ok) std::copy(tri.begin() + 3 * k, tri.begin() + 3 * k + 3, fc.v), ++k;
+    if (o.non_orientable > 0 && cb.warning)
+      cb.warning("the surface cannot be oriented consistently: " + std::to_string(o.non_orientable) +
+                 " edge(s) join triangles that face opposite ways (the input touches itself or is not orientable there)");
+    steps("orientation");
   }
   result.facet_angle_histogram.assign(61, 0);
   double min_angle = 180, max_size = 0, max_dist = 0, area = 0;

@@ -1,0 +1,141 @@
+// Feature subsegments brought back onto the surface by relabelling (see feature_sides.h).
+#include "rdt3d/feature_sides.h"
+
+#include <algorithm>
+#include <numeric>
+
+namespace gdr::rdt3d {
+namespace {
+
+bool inside(const m3d::TetView& m, int t) { return (m.tflag[t] & kInterior) != 0; }
+
+// The tetrahedra around edge ab of t, in order round it; false if the ring is open (hull).
+bool ring_of(const m3d::TetView& m, int t, int a, int b, std::vector<int>& ring) {
+  int f = 0;  // a face of t that holds ab
+  while (m.tv[4 * t + f] == a || m.tv[4 * t + f] == b) ++f;
+  ring.clear();
+  return turn_around_edge(m, t, f, a, b, [&](int u, int) {
+           ring.push_back(u);
+           return false;
+         }) == 0;
+}
+
+// Faces of the surface (between inside and outside) through the edge: side changes round it.
+int surface_faces_at_edge(const m3d::TetView& m, const std::vector<int>& ring) {
+  int changes = 0;
+  const int n = static_cast<int>(ring.size());
+  for (int i = 0; i < n; ++i) changes += inside(m, ring[i]) != inside(m, ring[(i + 1) % n]);
+  return changes;
+}
+
+// Is the surface a manifold at vertex v of t: the tetrahedra round v on each side one group,
+// joined across faces through v? (At most two groups in all, one per side.)
+bool manifold_at_vertex(const m3d::TetView& m, int t, int v, std::vector<int>& star, std::vector<int>& group) {
+  star.assign(1, t);
+  for (std::size_t i = 0; i < star.size(); ++i)
+    for (int f = 0; f < 4; ++f) {
+      const int u = star[i];
+      const int nb = m.tn[4 * u + f];
+      if (m.tv[4 * u + f] == v || nb < 0) continue;  // only faces through v
+      if (std::find(star.begin(), star.end(), nb >> 2) == star.end()) star.push_back(nb >> 2);
+    }
+  const int n = static_cast<int>(star.size());
+  group.resize(n);
+  std::iota(group.begin(), group.end(), 0);
+  auto root = [&](int i) {
+    while (group[i] != i) i = group[i] = group[group[i]];
+    return i;
+  };
+  for (int i = 0; i < n; ++i)
+    for (int f = 0; f < 4; ++f) {
+      const int u = star[i], nb = m.tn[4 * u + f];
+      if (m.tv[4 * u + f] == v || nb < 0 || inside(m, nb >> 2) != inside(m, u)) continue;
+      const int j = static_cast<int>(std::find(star.begin(), star.end(), nb >> 2) - star.begin());
+      group[root(i)] = root(j);
+    }
+  int groups = 0;
+  for (int i = 0; i < n; ++i) groups += root(i) == i;
+  return groups <= 2;
+}
+
+// Non-manifold edges and vertices of the tetrahedra in `ts`.
+int non_manifold_places(const m3d::TetView& m, const std::vector<int>& ts, std::vector<int>& s1,
+                        std::vector<int>& s2) {
+  int bad = 0;
+  for (const int t : ts) {
+    for (int q = 0; q < 4; ++q) bad += !manifold_at_vertex(m, t, m.tv[4 * t + q], s1, s2);
+    for (int e = 0; e < 6; ++e)
+      if (ring_of(m, t, m.tv[4 * t + m3d::edge_corner(e, 0)], m.tv[4 * t + m3d::edge_corner(e, 1)], s1))
+        bad += surface_faces_at_edge(m, s1) > 2;
+  }
+  return bad;
+}
+
+}  // namespace
+
+FeatureSides mend_lost_features(const m3d::TetView& m, const Criteria& c, const AabbView& tree,
+                                std::vector<char>& moved) {
+  FeatureSides r;
+  std::vector<int> ring, changed, s1, s2;
+  std::vector<char> in;
+  for (int t = 0; t < m.ntet; ++t) {
+    const int flags = m.tflag[t];
+    if (!(flags & m3d::kSegBits)) continue;
+    for (int e = 0; e < 6; ++e) {
+      if (!(flags & (m3d::kSeg0 << e))) continue;
+      const int a = m.tv[4 * t + m3d::edge_corner(e, 0)], b = m.tv[4 * t + m3d::edge_corner(e, 1)];
+      // Each subsegment once, from the lowest tetrahedron around it; a ring open at the hull
+      // has the outside beyond it and is left as it is.
+      if (!ring_of(m, t, a, b, ring) || *std::min_element(ring.begin(), ring.end()) != t) continue;
+      int f = 0;
+      while (m.tv[4 * t + f] == a || m.tv[4 * t + f] == b) ++f;
+      int facets = 0;
+      turn_around_edge(m, t, f, a, b, [&](int u, int g) {
+        facets += surface_facet(m, c, u, g);
+        return false;
+      });
+      if (facets != 0) continue;
+      ++r.lost;
+      // The probes: 1/64 of the way from the subsegment's midpoint to the midpoint of the
+      // opposite edge, inside each tetrahedron and close to the subsegment.
+      const double* pa = pt(m, a);
+      const double* pb = pt(m, b);
+      const int n = static_cast<int>(ring.size());
+      in.resize(n);
+      for (int i = 0; i < n; ++i) {
+        int o[2], k = 0;
+        for (int q = 0; q < 4; ++q) {
+          const int v = m.tv[4 * ring[i] + q];
+          if (v != a && v != b) o[k++] = v;
+        }
+        const double* pc = pt(m, o[0]);
+        const double* pd = pt(m, o[1]);
+        double p[3];
+        for (int q = 0; q < 3; ++q) {
+          const double mid = 0.5 * (pa[q] + pb[q]);
+          p[q] = mid + (0.5 * (pc[q] + pd[q]) - mid) / 64;
+        }
+        in[i] = inside_surface(tree, p, c.reach);
+      }
+      int changes = 0;
+      for (int i = 0; i < n; ++i) changes += in[i] != in[(i + 1) % n];
+      if (changes != 2) continue;  // all on one side, or several wedges: left as it is
+      changed.clear();
+      for (int i = 0; i < n; ++i)
+        if (inside(m, ring[i]) != (in[i] != 0)) changed.push_back(ring[i]);
+      // Kept only where the surface round the changed tetrahedra is no less a manifold.
+      const int before = non_manifold_places(m, changed, s1, s2);
+      for (const int u : changed) m.tflag[u] ^= kInterior;
+      if (non_manifold_places(m, changed, s1, s2) > before) {
+        for (const int u : changed) m.tflag[u] ^= kInterior;
+        continue;
+      }
+      ++r.mended;
+      for (const int u : changed) moved[u] = 1;
+      r.relabelled += static_cast<long long>(changed.size());
+    }
+  }
+  return r;
+}
+
+}  // namespace gdr::rdt3d
