@@ -278,6 +278,9 @@ KNOWN = [
     (1, "--max-steiner", "refinement stopped at the Steiner point cap"),  # a surface not yet closed
     # issue 12: where the surface cuts across a sharp edge at corners and acute creases
     (1, "--feature-angle", "feature subsegment(s) are not edges of the surface"),
+    # issue 12: a surface that touches itself at vertices (a mutated face joining two parts)
+    # can have a restricted surface no orientation fits; warned about
+    (1, None, "cannot be oriented consistently"),
     # issue 10: TetGen 1.5.0 (gdr tet's initial CDT) fails on some turned cylinders of many
     # sides, as its own command line does; the error says so and names gdr rdt
     (5, None, "meshes such surfaces without TetGen"),
