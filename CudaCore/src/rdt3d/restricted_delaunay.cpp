@@ -12,8 +12,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <functional>
 #include <map>
 #include <new>
+#include <numeric>
 #include <random>
 #include <set>
 #include <string>
@@ -156,6 +158,25 @@ std::vector<Piece> grade_small_angles(std::vector<double>& xyz, const std::vecto
   return pieces;
 }
 
+// The splits of the feature edges before refinement stop at max_points points (a facet size
+// far below the features' lengths would need millions per edge) with an error, and at the
+// caller's abort.
+struct SplitGuard {
+  std::size_t first_point;  // xyz's points before the splits
+  long long max_points;
+  double facet_size;        // as the user gave it, for the message
+  std::function<bool()> aborted;
+  void operator()(const std::vector<double>& xyz) const {
+    if (aborted()) throw Error(Status::Aborted, "aborted by the caller");
+    if (static_cast<long long>(xyz.size() / 3 - first_point) > max_points)
+      throw Error(Status::InvalidInput,
+                  "the sharp features would need more than " + std::to_string(max_points) +
+                      " points at the facet size " + std::to_string(facet_size) +
+                      " before refinement: give a larger facet size (or a larger maximum of Steiner points), "
+                      "or mesh without sharp features (feature angle 0)");
+  }
+};
+
 // Splits piece p at its midpoint (appended to xyz, its feature edge to point_segment) into
 // two pieces appended to `out`; returns the midpoint's id.
 int split_at_midpoint(std::vector<double>& xyz, const Piece& p, std::vector<int>& point_segment,
@@ -176,7 +197,7 @@ int split_at_midpoint(std::vector<double>& xyz, const Piece& p, std::vector<int>
 // to pieces of 2 feature_min; a point splitting one later then stays out of the other's ball.
 void split_pieces_near_other_features(std::vector<double>& xyz, const std::vector<std::array<int, 2>>& ends,
                                       double feature_min, std::vector<Piece>& pieces,
-                                      std::vector<int>& point_segment) {
+                                      std::vector<int>& point_segment, const SplitGuard& guard) {
   auto at = [&](int v) { return &xyz[3 * std::size_t(v)]; };
   auto touching = [&](int s, int u) {
     return s == u || ends[s][0] == ends[u][0] || ends[s][0] == ends[u][1] || ends[s][1] == ends[u][0] ||
@@ -192,7 +213,11 @@ void split_pieces_near_other_features(std::vector<double>& xyz, const std::vecto
     if (pieces.empty()) return;
     std::vector<double> sorted = lengths;
     std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
-    const double h = std::max(sorted[sorted.size() / 2], 2 * feature_min);
+    // At least the mean length over 8: the cells listed stay within 8 per piece plus one when
+    // most pieces are graded ones a small angle left tiny (a long piece would be listed in
+    // 10^9 cells of a tiny median).
+    const double total = std::accumulate(lengths.begin(), lengths.end(), 0.0);
+    const double h = std::max({sorted[sorted.size() / 2], 2 * feature_min, total / (8.0 * lengths.size())});
     using Cell = std::array<long long, 3>;
     std::map<Cell, std::vector<int>> grid;
     auto cell_of = [&](const double* x) {
@@ -269,6 +294,7 @@ void split_pieces_near_other_features(std::vector<double>& xyz, const std::vecto
     const bool done = next.size() == pieces.size();
     pieces = std::move(next);
     if (done) return;
+    guard(xyz);
   }
 }
 
@@ -278,12 +304,14 @@ void split_pieces_near_other_features(std::vector<double>& xyz, const std::vecto
 // refinement keeps them (rdt3d::KeepFeatures). The points added are appended to xyz, typed
 // kSegmentPoint.
 m3d::HostTetMesh triangulate_with_features(std::vector<double>& xyz, const std::vector<std::array<int, 2>>& ends,
-                                          double feature_min, const m3d::PowerOfTwoScale& scale) {
+                                          double feature_min, const m3d::PowerOfTwoScale& scale,
+                                          const SplitGuard& guard) {
   const int given = static_cast<int>(xyz.size() / 3);
   std::vector<int> midpoint_segment;  // per appended point
   std::vector<Piece> pieces = grade_small_angles(xyz, ends, feature_min, midpoint_segment);
-  split_pieces_near_other_features(xyz, ends, feature_min, pieces, midpoint_segment);
+  split_pieces_near_other_features(xyz, ends, feature_min, pieces, midpoint_segment, guard);
   for (;;) {  // ends: pieces shorter than their distance to any other point are edges
+    guard(xyz);
     m3d::HostTetMesh mesh = cdt3d::delaunay_tetrahedralization(xyz);
     std::set<std::uint64_t> edges;
     for (int t = 0; t < mesh.tets(); ++t)
@@ -458,7 +486,11 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
   // Feature subsegments are split down to 1/64 of the facet size; below, what cannot
   // be met next to a feature (a small angle) is left and reported.
   st.feature_min_length = (facet_size > 0 ? facet_size : diag / 20) / 64;
-  m3d::HostTetMesh mesh = triangulate_with_features(xyz, feature_ends, st.feature_min_length, scale);
+  const SplitGuard guard{xyz.size() / 3,
+                         std::max<long long>({1000000, 200LL * static_cast<long long>(plc.points.size()),
+                                              options.max_steiner_points}),
+                         scale.length(facet_size > 0 ? facet_size : diag / 20, -1), aborted};
+  m3d::HostTetMesh mesh = triangulate_with_features(xyz, feature_ends, st.feature_min_length, scale, guard);
   for (int v = sample; v < sample + 8; ++v) mesh.ptype[v] = m3d::kFreePoint;  // box corners
   st.initial_seconds = since(t0);
   if (aborted()) throw Error(Status::Aborted, "aborted by the caller");
