@@ -1,6 +1,7 @@
 // 3D validator: orientation, manifold faces, closed boundary, conformity to the surface
 // (points, segments, facets), Delaunay faces.
 #include <algorithm>
+#include <unordered_map>
 #include <cmath>
 #include <limits>
 #include <unordered_set>
@@ -305,6 +306,40 @@ ValidationReport validate_tetmesh(const TetMesh& mesh, const Surface* input,
     });
     const double area_tol = 1e-6;
     const auto& IT = input->triangles;
+    // The precision the input was given in: float (binary STL) when every coordinate is a
+    // float. A needle's plane is known only to that precision (below).
+    const bool float_input = std::all_of(input->points.begin(), input->points.end(), [](const Point3& p) {
+      return static_cast<float>(p.x) == p.x && static_cast<float>(p.y) == p.y && static_cast<float>(p.z) == p.z;
+    });
+    const double input_eps =
+        float_input ? std::numeric_limits<float>::epsilon() : std::numeric_limits<double>::epsilon();
+    // Needles: triangles so thin that the input's rounding leaves their planes uncertain by
+    // a percent or more (below). One folded over its neighbour (a dihedral angle of 0 within
+    // rounding, as float coordinates give) is covered by the neighbour's subfaces as well, and
+    // covers part of the neighbour: a needle is checked for under-cover only, and each other
+    // triangle may be over-covered by the needles at its edges, in units of its own area.
+    const double kNeedle = 0.01;
+    std::vector<double> tri_area(IT.size(), 0.0), tri_rounding(IT.size(), 0.0), needle_share(IT.size(), 0.0);
+    std::unordered_map<std::uint64_t, std::vector<int>> at_edge;
+    for (std::size_t k = 0; k < IT.size(); ++k) {
+      const Point3 &pa = input->points[IT[k][0]], &pb = input->points[IT[k][1]], &pc = input->points[IT[k][2]];
+      const double u[3] = {pb.x - pa.x, pb.y - pa.y, pb.z - pa.z}, v[3] = {pc.x - pa.x, pc.y - pa.y, pc.z - pa.z},
+                   w[3] = {pc.x - pb.x, pc.y - pb.y, pc.z - pb.z};
+      const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+      tri_area[k] = 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      const double longest2 = std::max({u[0] * u[0] + u[1] * u[1] + u[2] * u[2], v[0] * v[0] + v[1] * v[1] + v[2] * v[2],
+                                        w[0] * w[0] + w[1] * w[1] + w[2] * w[2]});
+      tri_rounding[k] = tri_area[k] > 0 ? 64 * input_eps * longest2 / tri_area[k] : 0.0;
+      for (int e = 0; e < 3; ++e) {
+        const std::uint64_t x = static_cast<std::uint32_t>(IT[k][e]), y = static_cast<std::uint32_t>(IT[k][(e + 1) % 3]);
+        at_edge[std::min(x, y) << 32 | std::max(x, y)].push_back(static_cast<int>(k));
+      }
+    }
+    for (const auto& [key, tris] : at_edge)
+      for (const int j : tris)
+        if (tri_rounding[j] >= kNeedle)
+          for (const int k : tris)
+            if (k != j && tri_area[k] > 0) needle_share[k] += tri_area[j] / tri_area[k];
     std::vector<std::uint8_t> facet_ok(IT.size(), 1);
     std::vector<double> cover(IT.size(), 0.0);  // share of each triangle's area covered
 #pragma omp parallel for schedule(dynamic, 64)
@@ -344,10 +379,13 @@ ValidationReport validate_tetmesh(const TetMesh& mesh, const Surface* input,
         }
       }
       cover[k] = covered;
-      // A triangle degenerate up to rounding (an angle of 180 degrees within 1e-9 or so)
-      // has a plane known only to about eps * longest^2 / area: its cover too.
-      const double rounding = 64 * std::numeric_limits<double>::epsilon() * test.longest * test.longest / test.area;
-      if (std::fabs(covered - 1.0) > area_tol + rounding) facet_ok[k] = 0;
+      // A triangle degenerate up to rounding (an angle of 180 degrees within 1e-9 or so, or
+      // a corner a float's rounding off the opposite edge in a binary STL) has a plane known
+      // only to about eps * longest^2 / area, eps the input's precision: its cover too.
+      const double rounding = 64 * input_eps * test.longest * test.longest / test.area;
+      if (covered < 1.0 - area_tol - rounding ||
+          (rounding < kNeedle && covered > 1.0 + area_tol + rounding + needle_share[k]))
+        facet_ok[k] = 0;
     }
     for (std::size_t k = 0; k < IT.size(); ++k) {
       if (facet_ok[k]) continue;
