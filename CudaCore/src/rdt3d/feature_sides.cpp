@@ -71,6 +71,39 @@ int non_manifold_places(const m3d::TetView& m, const std::vector<int>& ts, std::
   return bad;
 }
 
+// A change round a subsegment that pinches the surface (the tetrahedra that changed side
+// meet the rest of their new side at an edge or a vertex only): their neighbours whose
+// centroids lie on the side they took change too, layer by layer (at most 3 layers and 64
+// tetrahedra), until no edge or vertex round them is a pinch. Appends what changed to
+// `changed` and returns true then; else undoes the growth and returns false.
+bool grow(const m3d::TetView& m, const Criteria& c, const AabbView& tree, std::vector<int>& changed,
+          std::vector<int>& s1, std::vector<int>& s2) {
+  const std::size_t first = changed.size();
+  std::size_t from = 0;
+  for (int layer = 0; layer < 3 && changed.size() < 64; ++layer) {
+    const std::size_t to = changed.size();
+    for (std::size_t i = from; i < to; ++i)
+      for (int f = 0; f < 4; ++f) {
+        const int u = changed[i], nb = m.tn[4 * u + f];
+        if (nb < 0) continue;
+        const int w = nb >> 2;
+        if (inside(m, w) == inside(m, u) || std::find(changed.begin(), changed.end(), w) != changed.end()) continue;
+        double g[3] = {0, 0, 0};
+        for (int q = 0; q < 4; ++q)
+          for (int k = 0; k < 3; ++k) g[k] += 0.25 * pt(m, m.tv[4 * w + q])[k];
+        if (inside_surface(tree, g, c.reach) != inside(m, u)) continue;
+        m.tflag[w] ^= kInterior;
+        changed.push_back(w);
+      }
+    from = to;
+    if (changed.size() == to) break;  // nothing more to take
+    if (non_manifold_places(m, changed, s1, s2) == 0) return true;
+  }
+  for (std::size_t i = first; i < changed.size(); ++i) m.tflag[changed[i]] ^= kInterior;
+  changed.resize(first);
+  return false;
+}
+
 }  // namespace
 
 FeatureSides mend_lost_features(const m3d::TetView& m, const Criteria& c, const AabbView& tree,
@@ -119,20 +152,45 @@ FeatureSides mend_lost_features(const m3d::TetView& m, const Criteria& c, const 
       }
       int changes = 0;
       for (int i = 0; i < n; ++i) changes += in[i] != in[(i + 1) % n];
-      if (changes != 2) continue;  // all on one side, or several wedges: left as it is
+      if (changes != 2) {  // all on one side, or several wedges: left as it is
+        ++(changes == 0 ? r.one_side : r.wedges);
+        continue;
+      }
       changed.clear();
       for (int i = 0; i < n; ++i)
         if (inside(m, ring[i]) != (in[i] != 0)) changed.push_back(ring[i]);
       // Kept only where the surface round the changed tetrahedra is no less a manifold.
       const int before = non_manifold_places(m, changed, s1, s2);
       for (const int u : changed) m.tflag[u] ^= kInterior;
-      if (non_manifold_places(m, changed, s1, s2) > before) {
+      if (non_manifold_places(m, changed, s1, s2) > before && !grow(m, c, tree, changed, s1, s2)) {
         for (const int u : changed) m.tflag[u] ^= kInterior;
+        ++r.pinching;
         continue;
       }
       ++r.mended;
       for (const int u : changed) moved[u] = 1;
       r.relabelled += static_cast<long long>(changed.size());
+    }
+  }
+  // What is left, counted on the output's surface (a change round one subsegment can bring
+  // back another): faces next to a tetrahedron that changed side bound the volume when the
+  // two sides differ, the others when they are surface facets.
+  for (int t = 0; t < m.ntet; ++t) {
+    const int flags = m.tflag[t];
+    if (!(flags & m3d::kSegBits)) continue;
+    for (int e = 0; e < 6; ++e) {
+      if (!(flags & (m3d::kSeg0 << e))) continue;
+      const int a = m.tv[4 * t + m3d::edge_corner(e, 0)], b = m.tv[4 * t + m3d::edge_corner(e, 1)];
+      if (!ring_of(m, t, a, b, ring) || *std::min_element(ring.begin(), ring.end()) != t) continue;
+      int f = 0;
+      while (m.tv[4 * t + f] == a || m.tv[4 * t + f] == b) ++f;
+      int facets = 0;
+      turn_around_edge(m, t, f, a, b, [&](int u, int g) {
+        const int w = m.tn[4 * u + g] >> 2;
+        facets += moved[u] || moved[w] ? inside(m, u) != inside(m, w) : surface_facet(m, c, u, g);
+        return false;
+      });
+      r.left += facets == 0;
     }
   }
   return r;

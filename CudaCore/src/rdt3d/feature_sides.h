@@ -8,8 +8,11 @@
 // prevents it with protecting balls. Here the tetrahedra around such a subsegment take the
 // side of the input's solid right next to it instead: each is probed at a point inside it
 // close to the subsegment, and where the probes inside form one run round the edge, the
-// tetrahedra change side so that the surface passes through the subsegment. The
-// triangulation stays as it is; the validator checks the surface that results.
+// tetrahedra change side so that the surface passes through the subsegment. Where that
+// pinches the surface (the changed ones meet the rest of their new side at an edge or a
+// vertex only), their neighbours whose centroids lie on that side change too, up to three
+// layers; where even that leaves a pinch, nothing changes. The triangulation stays as it
+// is; the validator checks the surface that results.
 #pragma once
 #include <vector>
 
@@ -19,8 +22,10 @@ namespace gdr::rdt3d {
 
 struct FeatureSides {
   long long lost = 0;        // feature subsegments no surface facet held
-  long long mended = 0;      // of those, now edges of the surface
+  long long mended = 0;      // of those, made edges of the surface by their own changes
+  long long left = 0;        // feature subsegments no face of the output surface holds, at the end
   long long relabelled = 0;  // tetrahedra that changed side
+  long long one_side = 0, wedges = 0, pinching = 0;  // left: probes all on one side, in several runs, a pinch made
 };
 
 // m: the final triangulation (no dead tetrahedra) with its flags; kInterior changes in place

@@ -635,8 +635,11 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
   if (c.inside && st.features_off_surface > 0) {
     pinches.moved.assign(m.ntet, 0);
     const rdt3d::FeatureSides fs = rdt3d::mend_lost_features(m, c, tree, pinches.moved);
-    st.features_off_surface -= fs.mended;
+    st.features_off_surface = fs.left;
     st.feature_relabelled = fs.relabelled;
+    if (std::getenv("GDR_TRACE"))
+      std::fprintf(stderr, "gdr-trace rdt features off the surface: %lld, mended %lld (not: %lld one side, %lld wedges, %lld pinching), %lld left\n",
+                   fs.lost, fs.mended, fs.one_side, fs.wedges, fs.pinching, fs.left);
   }
   if (st.features_off_surface > 0 && cb.warning)
     cb.warning(std::to_string(st.features_off_surface) +
