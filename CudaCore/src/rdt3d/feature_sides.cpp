@@ -71,6 +71,25 @@ int non_manifold_places(const m3d::TetView& m, const std::vector<int>& ts, std::
   return bad;
 }
 
+// Calls visit(t, a, b, f) once per feature subsegment ab, from the lowest tetrahedron t round
+// it (f: a face of t through ab), with `ring` holding the tetrahedra round it in order. A
+// ring open at the hull has the outside beyond it and is skipped.
+template <class Visit>
+void for_each_subsegment(const m3d::TetView& m, std::vector<int>& ring, Visit visit) {
+  for (int t = 0; t < m.ntet; ++t) {
+    const int flags = m.tflag[t];
+    if (!(flags & m3d::kSegBits)) continue;
+    for (int e = 0; e < 6; ++e) {
+      if (!(flags & (m3d::kSeg0 << e))) continue;
+      const int a = m.tv[4 * t + m3d::edge_corner(e, 0)], b = m.tv[4 * t + m3d::edge_corner(e, 1)];
+      if (!ring_of(m, t, a, b, ring) || *std::min_element(ring.begin(), ring.end()) != t) continue;
+      int f = 0;
+      while (m.tv[4 * t + f] == a || m.tv[4 * t + f] == b) ++f;
+      visit(t, a, b, f);
+    }
+  }
+}
+
 // A change round a subsegment that pinches the surface (the tetrahedra that changed side
 // meet the rest of their new side at an edge or a vertex only): their neighbours whose
 // centroids lie on the side they took change too, layer by layer (at most 3 layers and 64
@@ -111,88 +130,68 @@ FeatureSides mend_lost_features(const m3d::TetView& m, const Criteria& c, const 
   FeatureSides r;
   std::vector<int> ring, changed, s1, s2;
   std::vector<char> in;
-  for (int t = 0; t < m.ntet; ++t) {
-    const int flags = m.tflag[t];
-    if (!(flags & m3d::kSegBits)) continue;
-    for (int e = 0; e < 6; ++e) {
-      if (!(flags & (m3d::kSeg0 << e))) continue;
-      const int a = m.tv[4 * t + m3d::edge_corner(e, 0)], b = m.tv[4 * t + m3d::edge_corner(e, 1)];
-      // Each subsegment once, from the lowest tetrahedron around it; a ring open at the hull
-      // has the outside beyond it and is left as it is.
-      if (!ring_of(m, t, a, b, ring) || *std::min_element(ring.begin(), ring.end()) != t) continue;
-      int f = 0;
-      while (m.tv[4 * t + f] == a || m.tv[4 * t + f] == b) ++f;
-      int facets = 0;
-      turn_around_edge(m, t, f, a, b, [&](int u, int g) {
-        facets += surface_facet(m, c, u, g);
-        return false;
-      });
-      if (facets != 0) continue;
-      ++r.lost;
-      // The probes: 1/64 of the way from the subsegment's midpoint to the midpoint of the
-      // opposite edge, inside each tetrahedron and close to the subsegment.
-      const double* pa = pt(m, a);
-      const double* pb = pt(m, b);
-      const int n = static_cast<int>(ring.size());
-      in.resize(n);
-      for (int i = 0; i < n; ++i) {
-        int o[2], k = 0;
-        for (int q = 0; q < 4; ++q) {
-          const int v = m.tv[4 * ring[i] + q];
-          if (v != a && v != b) o[k++] = v;
-        }
-        const double* pc = pt(m, o[0]);
-        const double* pd = pt(m, o[1]);
-        double p[3];
-        for (int q = 0; q < 3; ++q) {
-          const double mid = 0.5 * (pa[q] + pb[q]);
-          p[q] = mid + (0.5 * (pc[q] + pd[q]) - mid) / 64;
-        }
-        in[i] = inside_surface(tree, p, c.reach);
+  for_each_subsegment(m, ring, [&](int t, int a, int b, int f) {
+    int facets = 0;
+    turn_around_edge(m, t, f, a, b, [&](int u, int g) {
+      facets += surface_facet(m, c, u, g);
+      return false;
+    });
+    if (facets != 0) return;
+    ++r.lost;
+    // The probes: 1/64 of the way from the subsegment's midpoint to the midpoint of the
+    // opposite edge, inside each tetrahedron and close to the subsegment.
+    const double* pa = pt(m, a);
+    const double* pb = pt(m, b);
+    const int n = static_cast<int>(ring.size());
+    in.resize(n);
+    for (int i = 0; i < n; ++i) {
+      int o[2], k = 0;
+      for (int q = 0; q < 4; ++q) {
+        const int v = m.tv[4 * ring[i] + q];
+        if (v != a && v != b) o[k++] = v;
       }
-      int changes = 0;
-      for (int i = 0; i < n; ++i) changes += in[i] != in[(i + 1) % n];
-      if (changes != 2) {  // all on one side, or several wedges: left as it is
-        ++(changes == 0 ? r.one_side : r.wedges);
-        continue;
+      const double* pc = pt(m, o[0]);
+      const double* pd = pt(m, o[1]);
+      double p[3];
+      for (int q = 0; q < 3; ++q) {
+        const double mid = 0.5 * (pa[q] + pb[q]);
+        p[q] = mid + (0.5 * (pc[q] + pd[q]) - mid) / 64;
       }
-      changed.clear();
-      for (int i = 0; i < n; ++i)
-        if (inside(m, ring[i]) != (in[i] != 0)) changed.push_back(ring[i]);
-      // Kept only where the surface round the changed tetrahedra is no less a manifold.
-      const int before = non_manifold_places(m, changed, s1, s2);
-      for (const int u : changed) m.tflag[u] ^= kInterior;
-      if (non_manifold_places(m, changed, s1, s2) > before && !grow(m, c, tree, changed, s1, s2)) {
-        for (const int u : changed) m.tflag[u] ^= kInterior;
-        ++r.pinching;
-        continue;
-      }
-      ++r.mended;
-      for (const int u : changed) moved[u] = 1;
-      r.relabelled += static_cast<long long>(changed.size());
+      in[i] = inside_surface(tree, p, c.reach);
     }
-  }
+    int changes = 0;
+    for (int i = 0; i < n; ++i) changes += in[i] != in[(i + 1) % n];
+    if (changes != 2) {  // all on one side, or several wedges: left as it is
+      ++(changes == 0 ? r.one_side : r.wedges);
+      return;
+    }
+    changed.clear();
+    for (int i = 0; i < n; ++i)
+      if (inside(m, ring[i]) != (in[i] != 0)) changed.push_back(ring[i]);
+    // Kept only where the surface round the changed tetrahedra is no less a manifold.
+    const int before = non_manifold_places(m, changed, s1, s2);
+    for (const int u : changed) m.tflag[u] ^= kInterior;
+    if (non_manifold_places(m, changed, s1, s2) > before && !grow(m, c, tree, changed, s1, s2)) {
+      for (const int u : changed) m.tflag[u] ^= kInterior;
+      ++r.pinching;
+      return;
+    }
+    ++r.mended;
+    for (const int u : changed) moved[u] = 1;
+    r.relabelled += static_cast<long long>(changed.size());
+  });
   // What is left, counted on the output's surface (a change round one subsegment can bring
   // back another): faces next to a tetrahedron that changed side bound the volume when the
   // two sides differ, the others when they are surface facets.
-  for (int t = 0; t < m.ntet; ++t) {
-    const int flags = m.tflag[t];
-    if (!(flags & m3d::kSegBits)) continue;
-    for (int e = 0; e < 6; ++e) {
-      if (!(flags & (m3d::kSeg0 << e))) continue;
-      const int a = m.tv[4 * t + m3d::edge_corner(e, 0)], b = m.tv[4 * t + m3d::edge_corner(e, 1)];
-      if (!ring_of(m, t, a, b, ring) || *std::min_element(ring.begin(), ring.end()) != t) continue;
-      int f = 0;
-      while (m.tv[4 * t + f] == a || m.tv[4 * t + f] == b) ++f;
-      int facets = 0;
-      turn_around_edge(m, t, f, a, b, [&](int u, int g) {
-        const int w = m.tn[4 * u + g] >> 2;
-        facets += moved[u] || moved[w] ? inside(m, u) != inside(m, w) : surface_facet(m, c, u, g);
-        return false;
-      });
-      r.left += facets == 0;
-    }
-  }
+  for_each_subsegment(m, ring, [&](int t, int a, int b, int f) {
+    int facets = 0;
+    turn_around_edge(m, t, f, a, b, [&](int u, int g) {
+      const int w = m.tn[4 * u + g] >> 2;
+      facets += moved[u] || moved[w] ? inside(m, u) != inside(m, w) : surface_facet(m, c, u, g);
+      return false;
+    });
+    r.left += facets == 0;
+  });
   return r;
 }
 
