@@ -598,6 +598,7 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
   // The output, read off the final triangulation with the engine's own predicates.
   progress(0.92, "restricted surface and volume");
   const auto t_output = Clock::now();
+  TraceSteps steps("rdt output");
   m3d::TetView m{};
   m.xyz = out.xyz.data();
   m.ptype = out.ptype.data();
@@ -638,7 +639,9 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
     st.features_off_surface = fs.left;
     st.feature_relabelled = fs.relabelled;
     if (std::getenv("GDR_TRACE"))
-      std::fprintf(stderr, "gdr-trace rdt features off the surface: %lld, mended %lld (not: %lld one side, %lld wedges, %lld pinching), %lld left\n",
+      std::fprintf(stderr,
+                   "gdr-trace rdt features off the surface: %lld, mended %lld (not: %lld one side, %lld wedges, "
+                   "%lld pinching), %lld left\n",
                    fs.lost, fs.mended, fs.one_side, fs.wedges, fs.pinching, fs.left);
   }
   if (st.features_off_surface > 0 && cb.warning)
@@ -783,7 +786,6 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
     }
   }
   // Facets oriented by the input's normals: the same way across each patch of the surface.
-  TraceSteps steps("rdt output");
   steps("facets");
   if (std::any_of(facets.begin(), facets.end(), [](const Facet& fc) { return fc.ok && !fc.vote.certain; })) {
     std::vector<int> tri;
