@@ -3,6 +3,7 @@
 #pragma once
 #include <algorithm>
 #include <chrono>
+#include <climits>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -586,6 +587,14 @@ struct Engine {
   // tenth of the elements are dead.
   void insert(std::size_t ns, long long won) {
     const std::size_t nt = tuples.size();
+    // Faces are numbered 4t + f in 32 bits (tn): a mesh that could pass INT_MAX / 4
+    // tetrahedra (about 537 million; an H200 holds that many) stops with an error before any
+    // number wraps. A cavity's tuples make at most four new tetrahedra each.
+    if (4.0 * static_cast<double>(nt) + dm.ntet > static_cast<double>(INT_MAX / 4))
+      throw Error(Status::InvalidInput,
+                  "one iteration's cavities hold " + std::to_string(nt) + " elements on a mesh of " +
+                      std::to_string(dm.ntet) + " tetrahedra: beyond the engine's 32-bit tetrahedron numbers "
+                      "(give larger sizes or a maximum of Steiner points)");
     count.resize_discard(nt);
     count2.resize_discard(nt);
     const Tuple* tp = tuples.data();
