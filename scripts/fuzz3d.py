@@ -278,6 +278,9 @@ KNOWN = [
     (1, "--max-steiner", "refinement stopped at the Steiner point cap"),  # a surface not yet closed
     # issue 12: where the surface cuts across a sharp edge at corners and acute creases
     (1, "--feature-angle", "feature subsegment(s) are not edges of the surface"),
+    # issue 12 (README, "thin parts and features"): next to features at small angles the
+    # facets are protected and the surface can stay pinched; warned about
+    (1, "--feature-angle", "is not a manifold at"),
     # issue 12: a surface that touches itself at vertices (a mutated face joining two parts)
     # can have a restricted surface no orientation fits; warned about
     (1, None, "cannot be oriented consistently"),

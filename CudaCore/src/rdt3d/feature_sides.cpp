@@ -20,12 +20,26 @@ bool ring_of(const m3d::TetView& m, int t, int a, int b, std::vector<int>& ring)
          }) == 0;
 }
 
-// Faces of the surface (between inside and outside) through the edge: side changes round it.
-int surface_faces_at_edge(const m3d::TetView& m, const std::vector<int>& ring) {
-  int changes = 0;
-  const int n = static_cast<int>(ring.size());
-  for (int i = 0; i < n; ++i) changes += inside(m, ring[i]) != inside(m, ring[(i + 1) % n]);
-  return changes;
+// The tetrahedra that changed side: those committed, and those of the change being tried.
+struct Changed {
+  const std::vector<char>& moved;
+  const std::vector<int>& trying;
+  bool operator()(int t) const { return moved[t] || std::find(trying.begin(), trying.end(), t) != trying.end(); }
+};
+
+// Faces of the output surface through edge ab of t, as restricted_delaunay.cpp emits them: a
+// face next to a tetrahedron that changed side where the two sides differ, any other where
+// it is a surface facet. -1 if the ring round ab is open (the hull).
+int emitted_at_edge(const m3d::TetView& m, const Criteria& c, int t, int a, int b, const Changed& changed) {
+  int f = 0;  // a face of t that holds ab
+  while (m.tv[4 * t + f] == a || m.tv[4 * t + f] == b) ++f;
+  int faces = 0;
+  const int r = turn_around_edge(m, t, f, a, b, [&](int u, int g) {
+    const int w = m.tn[4 * u + g] >> 2;
+    faces += changed(u) || changed(w) ? inside(m, u) != inside(m, w) : surface_facet(m, c, u, g);
+    return false;
+  });
+  return r == 0 ? faces : -1;
 }
 
 // Is the surface a manifold at vertex v of t: the tetrahedra round v on each side one group,
@@ -58,15 +72,18 @@ bool manifold_at_vertex(const m3d::TetView& m, int t, int v, std::vector<int>& s
   return groups <= 2;
 }
 
-// Non-manifold edges and vertices of the tetrahedra in `ts`.
-int non_manifold_places(const m3d::TetView& m, const std::vector<int>& ts, std::vector<int>& s1,
-                        std::vector<int>& s2) {
+// Non-manifold edges and vertices of the tetrahedra in `ts`; an edge counts with faces as
+// the output emits them (faces, but not two: a pinch or a hole).
+int non_manifold_places(const m3d::TetView& m, const Criteria& c, const std::vector<int>& ts,
+                        const Changed& changed, std::vector<int>& s1, std::vector<int>& s2) {
   int bad = 0;
   for (const int t : ts) {
     for (int q = 0; q < 4; ++q) bad += !manifold_at_vertex(m, t, m.tv[4 * t + q], s1, s2);
-    for (int e = 0; e < 6; ++e)
-      if (ring_of(m, t, m.tv[4 * t + m3d::edge_corner(e, 0)], m.tv[4 * t + m3d::edge_corner(e, 1)], s1))
-        bad += surface_faces_at_edge(m, s1) > 2;
+    for (int e = 0; e < 6; ++e) {
+      const int faces = emitted_at_edge(m, c, t, m.tv[4 * t + m3d::edge_corner(e, 0)],
+                                        m.tv[4 * t + m3d::edge_corner(e, 1)], changed);
+      bad += faces > 0 && faces != 2;
+    }
   }
   return bad;
 }
@@ -95,8 +112,8 @@ void for_each_subsegment(const m3d::TetView& m, std::vector<int>& ring, Visit vi
 // centroids lie on the side they took change too, layer by layer (at most 3 layers and 64
 // tetrahedra), until no edge or vertex round them is a pinch. Appends what changed to
 // `changed` and returns true then; else undoes the growth and returns false.
-bool grow(const m3d::TetView& m, const Criteria& c, const AabbView& tree, std::vector<int>& changed,
-          std::vector<int>& s1, std::vector<int>& s2) {
+bool grow(const m3d::TetView& m, const Criteria& c, const AabbView& tree, const std::vector<char>& moved,
+          std::vector<int>& changed, std::vector<int>& s1, std::vector<int>& s2) {
   const std::size_t first = changed.size();
   std::size_t from = 0;
   for (int layer = 0; layer < 3 && changed.size() < 64; ++layer) {
@@ -116,7 +133,7 @@ bool grow(const m3d::TetView& m, const Criteria& c, const AabbView& tree, std::v
       }
     from = to;
     if (changed.size() == to) break;  // nothing more to take
-    if (non_manifold_places(m, changed, s1, s2) == 0) return true;
+    if (non_manifold_places(m, c, changed, Changed{moved, changed}, s1, s2) == 0) return true;
   }
   for (std::size_t i = first; i < changed.size(); ++i) m.tflag[changed[i]] ^= kInterior;
   changed.resize(first);
@@ -169,9 +186,11 @@ FeatureSides mend_lost_features(const m3d::TetView& m, const Criteria& c, const 
     for (int i = 0; i < n; ++i)
       if (inside(m, ring[i]) != (in[i] != 0)) changed.push_back(ring[i]);
     // Kept only where the surface round the changed tetrahedra is no less a manifold.
-    const int before = non_manifold_places(m, changed, s1, s2);
+    const std::vector<int> none;
+    const int before = non_manifold_places(m, c, changed, Changed{moved, none}, s1, s2);
     for (const int u : changed) m.tflag[u] ^= kInterior;
-    if (non_manifold_places(m, changed, s1, s2) > before && !grow(m, c, tree, changed, s1, s2)) {
+    if (non_manifold_places(m, c, changed, Changed{moved, changed}, s1, s2) > before &&
+        !grow(m, c, tree, moved, changed, s1, s2)) {
       for (const int u : changed) m.tflag[u] ^= kInterior;
       ++r.pinching;
       return;
@@ -183,14 +202,9 @@ FeatureSides mend_lost_features(const m3d::TetView& m, const Criteria& c, const 
   // What is left, counted on the output's surface (a change round one subsegment can bring
   // back another): faces next to a tetrahedron that changed side bound the volume when the
   // two sides differ, the others when they are surface facets.
-  for_each_subsegment(m, ring, [&](int t, int a, int b, int f) {
-    int facets = 0;
-    turn_around_edge(m, t, f, a, b, [&](int u, int g) {
-      const int w = m.tn[4 * u + g] >> 2;
-      facets += moved[u] || moved[w] ? inside(m, u) != inside(m, w) : surface_facet(m, c, u, g);
-      return false;
-    });
-    r.left += facets == 0;
+  const std::vector<int> none;
+  for_each_subsegment(m, ring, [&](int t, int a, int b, int) {
+    r.left += emitted_at_edge(m, c, t, a, b, Changed{moved, none}) == 0;
   });
   return r;
 }
