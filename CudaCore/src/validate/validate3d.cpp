@@ -320,8 +320,13 @@ ValidationReport validate_tetmesh(const TetMesh& mesh, const Surface* input,
     // triangle may be over-covered by the needles at its edges, in units of its own area.
     const double kNeedle = 0.01;
     std::vector<double> tri_area(IT.size(), 0.0), tri_rounding(IT.size(), 0.0), needle_share(IT.size(), 0.0);
-    std::unordered_map<std::uint64_t, std::vector<int>> at_edge;
-    for (std::size_t k = 0; k < IT.size(); ++k) {
+    auto edge = [&](std::size_t k, int e) {
+      const std::uint64_t x = static_cast<std::uint32_t>(IT[k][e]), y = static_cast<std::uint32_t>(IT[k][(e + 1) % 3]);
+      return std::min(x, y) << 32 | std::max(x, y);
+    };
+    std::unordered_map<std::uint64_t, std::vector<int>> needles_at;  // needles by edge (few)
+#pragma omp parallel for
+    for (std::int64_t k = 0; k < static_cast<std::int64_t>(IT.size()); ++k) {
       const Point3 &pa = input->points[IT[k][0]], &pb = input->points[IT[k][1]], &pc = input->points[IT[k][2]];
       const double u[3] = {pb.x - pa.x, pb.y - pa.y, pb.z - pa.z}, v[3] = {pc.x - pa.x, pc.y - pa.y, pc.z - pa.z},
                    w[3] = {pc.x - pb.x, pc.y - pb.y, pc.z - pb.z};
@@ -330,16 +335,18 @@ ValidationReport validate_tetmesh(const TetMesh& mesh, const Surface* input,
       const double longest2 = std::max({u[0] * u[0] + u[1] * u[1] + u[2] * u[2], v[0] * v[0] + v[1] * v[1] + v[2] * v[2],
                                         w[0] * w[0] + w[1] * w[1] + w[2] * w[2]});
       tri_rounding[k] = tri_area[k] > 0 ? 64 * input_eps * longest2 / tri_area[k] : 0.0;
-      for (int e = 0; e < 3; ++e) {
-        const std::uint64_t x = static_cast<std::uint32_t>(IT[k][e]), y = static_cast<std::uint32_t>(IT[k][(e + 1) % 3]);
-        at_edge[std::min(x, y) << 32 | std::max(x, y)].push_back(static_cast<int>(k));
-      }
     }
-    for (const auto& [key, tris] : at_edge)
-      for (const int j : tris)
-        if (tri_rounding[j] >= kNeedle)
-          for (const int k : tris)
-            if (k != j && tri_area[k] > 0) needle_share[k] += tri_area[j] / tri_area[k];
+    for (std::size_t j = 0; j < IT.size(); ++j)
+      if (tri_rounding[j] >= kNeedle)
+        for (int e = 0; e < 3; ++e) needles_at[edge(j, e)].push_back(static_cast<int>(j));
+    if (!needles_at.empty())
+      for (std::size_t k = 0; k < IT.size(); ++k)
+        for (int e = 0; e < 3 && tri_area[k] > 0; ++e) {
+          const auto it = needles_at.find(edge(k, e));
+          if (it == needles_at.end()) continue;
+          for (const int j : it->second)
+            if (static_cast<std::size_t>(j) != k) needle_share[k] += tri_area[j] / tri_area[k];
+        }
     std::vector<std::uint8_t> facet_ok(IT.size(), 1);
     std::vector<double> cover(IT.size(), 0.0);  // share of each triangle's area covered
 #pragma omp parallel for schedule(dynamic, 64)
