@@ -20,8 +20,17 @@ mkdir -p "$out"
 . "$here/gui_test_support.sh"
 export GDR_PLUGIN=$plugin GDR_INPUT=$input
 apply() { xdotool mousemove 47 424 click 1; }
-abort() { # the status bar's abort button; it moves with the width of the memory text
-  for x in 354 362 370 378; do xdotool mousemove $x 748 click 1; done
+abort() { # the status bar's abort button, found in a SCREENSHOT: it moves with the widths
+  # of the texts beside it, so it is the grey-bordered button just left of the progress
+  # bar's blue fill on row 745
+  import -window root "$out/gui_abort_click.png"
+  x=$(convert "$out/gui_abort_click.png" -crop 900x1+100+745 -depth 8 rgb:- | od -An -tu1 -v -w3 |
+    awk '{ r[NR] = $1; b[NR] = $3 }
+         END { for (i = 1; i <= NR && !(b[i] > r[i] + 80); i++);
+               for (j = i - 1; j > 0 && !(r[j] > 140 && r[j] < 200 && b[j] - r[j] < 10 && r[j] - b[j] < 10); j--);
+               if (i <= NR && j > 0) print 100 + j - 1 - 9 }')
+  [ -n "$x" ] || fail "no abort button beside the progress bar (see $out/gui_abort_click.png)"
+  xdotool mousemove "$x" 745 click 1
 }
 apply_lit() { # SCREENSHOT: the Apply button is green when enabled, grey when not
   import -window root "$1"
@@ -34,7 +43,10 @@ abort_run() { # N: abort run N once it reports progress; it must stop empty with
   [ "$1" -eq 1 ] && import -window root "$out/gui_progress.png"
   abort
   clicked=$(date +%s)
-  wait_for "end $1 cells" 10 || fail "run $1 did not stop within 10 s of the abort"
+  # the button moves with the length of the progress text, which can change between the
+  # screenshot and the click: one more try if the run goes on
+  wait_for "end $1 cells" 4 || { abort; wait_for "end $1 cells" 6; } ||
+    fail "run $1 did not stop within 10 s of the abort"
   echo "run $1 stopped $(( $(date +%s) - clicked )) s after the abort"
   grep -q "end $1 cells=0" "$log" || fail "the aborted run $1 left cells"
   sleep 5
