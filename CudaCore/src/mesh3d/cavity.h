@@ -524,6 +524,28 @@ GDR_HD_INLINE int fan_apex(const TetView& m, int u, int g, int a, int b) {
   return -1;
 }
 
+// The flip of subfaces (o, x, y), (y, x, w) to (o, x, w), (o, w, y) keeps the surface from
+// folding only if the quadrilateral o x w y is convex in the facet: x and y strictly on
+// either side of ow and o, w on either side of xy, in the projection along subface `ref`'s dominant normal axis (both
+// subfaces pass the lower index, so they decide alike). The tetrahedra with p do not show
+// it: p lies on or next to the facet, and their signs are then roundings.
+GDR_HD_INLINE bool flip_keeps_facet_flat(const TetView& m, int ref, int o, int x, int y, int w) {
+  const int drop = subface_normal_axis(m, ref);
+  const int ax = drop == 0 ? 1 : 0, ay = drop == 2 ? 1 : 2;
+  double q[4][2];
+  const int id[4] = {o, x, y, w};
+  for (int k = 0; k < 4; ++k) {
+    q[k][0] = pt(m, id[k])[ax];
+    q[k][1] = pt(m, id[k])[ay];
+  }
+  const double before = pred::orient2d(q[0], q[1], q[2]);  // (o, x, y)
+  const double left = pred::orient2d(q[0], q[1], q[3]);    // (o, x, w)
+  const double right = pred::orient2d(q[0], q[3], q[2]);   // (o, w, y)
+  const double partner = pred::orient2d(q[2], q[1], q[3]); // (y, x, w)
+  return before > 0 ? (left > 0 && right > 0 && partner > 0)
+                    : (before < 0 && left < 0 && right < 0 && partner < 0);
+}
+
 // Before CheckCavity: each boundary fan subface whose two new tetrahedra with its neighbour
 // across a non-subsegment edge would not be locally Delaunay marks that edge to flip, when
 // both flipped tetrahedra are positive and not flat. Both subfaces decide alike (the test
@@ -557,6 +579,7 @@ struct MarkFlips {
         }
         if (!(pred::insphere(pt(m, v[0]), pt(m, v[1]), pt(m, v[2]), c.p, pt(m, w)) > 0)) continue;
         const bool lo = s < s2;
+        if (!flip_keeps_facet_flat(m, lo ? s : s2, o, x, y, w)) continue;
         const int vmin = x < y ? x : y, vmax = x < y ? y : x;
         // Own flipped tetrahedron: the face's corners with one of the edge's replaced by w;
         // the partner's: its corners with the other replaced by o.
