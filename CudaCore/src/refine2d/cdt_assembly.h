@@ -319,7 +319,7 @@ class PreparedCdtIn final : public PreparedCdt {
     return s;
   }
 
-  ThinEstimate thin_parts(double tan_theta) override {
+  ThinEstimate thin_parts(double tan_theta, double max_width) override {
     using Ops = exec::Ops<Space>;
     ThinEstimate est;
     if (!(tan_theta > 0)) return est;
@@ -340,7 +340,7 @@ class PreparedCdtIn final : public PreparedCdt {
     // Positive doubles order as their bits: the largest single credit by an integer maximum,
     // then the first triangle that has it.
     Ops::for_each_heavy(nt, [=] GDR_HD(long long t) {
-      const ThinAt r = thin_parts_at(static_cast<int>(t), tv, tn, ts, sg, xy, tan_theta);
+      const ThinAt r = thin_parts_at(static_cast<int>(t), tv, tn, ts, sg, xy, tan_theta, max_width);
       cr[t] = r.credit;
       lg[t] = r.best;
       if (r.best > 0) exec::atomic_max(bs, detail::positive_bits(r.best));
@@ -351,7 +351,7 @@ class PreparedCdtIn final : public PreparedCdt {
     Ops::for_each(1, [=] GDR_HD(long long) {
       th[0] = th[1] = 0;
       if (*where < nt) {
-        const ThinAt r = thin_parts_at(*where, tv, tn, ts, sg, xy, tan_theta);
+        const ThinAt r = thin_parts_at(*where, tv, tn, ts, sg, xy, tan_theta, max_width);
         th[0] = r.width;
         th[1] = r.length;
       }

@@ -30,7 +30,7 @@ class PreparedCdt {
   };
   // `region_area2`: twice each region's area bound by region number - 1 (EngineParams).
   virtual Areas areas(double max_area, const std::vector<double>& region_area2) = 0;
-  virtual ThinEstimate thin_parts(double tan_theta) = 0;  // thin_parts.h
+  virtual ThinEstimate thin_parts(double tan_theta, double max_width) = 0;  // thin_parts.h
   virtual HostMesh download() = 0;
   // Refines in the space (once: the mesh moves into the engine).
   virtual EngineResult refine(MeshResult& out, const EngineParams& params, const Callbacks& cb) = 0;

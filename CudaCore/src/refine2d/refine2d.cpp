@@ -303,8 +303,23 @@ long long steiner_cap(int cdt_points, const SizeEstimate& e, double capacity,
   return static_cast<long long>(std::max(0.0, std::min(wanted, capacity / 2 - cdt_points)));
 }
 
+// The length of every segment and of the bounding box's sides (at least the convex hull's
+// perimeter, whose edges can be segments too).
+double segment_length(const Pslg& in) {
+  double length = 0, lo[2] = {DBL_MAX, DBL_MAX}, hi[2] = {-DBL_MAX, -DBL_MAX};
+  for (const auto& s : in.segments) {
+    const Point2 &a = in.points[s[0]], &b = in.points[s[1]];
+    length += std::hypot(b.x - a.x, b.y - a.y);
+  }
+  for (const Point2& p : in.points) {
+    lo[0] = std::min(lo[0], p.x), hi[0] = std::max(hi[0], p.x);
+    lo[1] = std::min(lo[1], p.y), hi[1] = std::max(hi[1], p.y);
+  }
+  return in.points.empty() ? length : length + 2 * ((hi[0] - lo[0]) + (hi[1] - lo[1]));
+}
+
 // Thin parts (thin_parts.h), on the host's copy of the CDT.
-r2d::ThinEstimate estimate_thin_parts(const r2d::HostMesh& m, double tan_theta) {
+r2d::ThinEstimate estimate_thin_parts(const r2d::HostMesh& m, double tan_theta, double max_width) {
   r2d::ThinEstimate est;
   if (!(tan_theta > 0)) return est;
   double best = 0, total = 0;
@@ -315,7 +330,7 @@ r2d::ThinEstimate estimate_thin_parts(const r2d::HostMesh& m, double tan_theta) 
 #pragma omp for schedule(dynamic, 256) nowait
     for (int t = 0; t < ntri; ++t) {
       const r2d::ThinAt r = r2d::thin_parts_at(t, m.tv.data(), m.tn.data(), m.ts.data(), m.seg.data(),
-                                               m.xy.data(), tan_theta);
+                                               m.xy.data(), tan_theta, max_width);
       mine.credit += r.credit;
       if (r.best > mine.best) mine.best = r.best, mine.width = r.width, mine.length = r.length;
     }
@@ -684,7 +699,9 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
   const auto thin_refusal = [&]() -> std::string {
     const auto t_thin = Clock::now();
     const double tan_theta = std::tan(options.min_angle * kPi / 180.0);
-    const r2d::ThinEstimate thin = prepared ? prepared->thin_parts(tan_theta) : estimate_thin_parts(mesh, tan_theta);
+    const double max_width = r2d::thin_width_limit(segment_length(input), tan_theta, double(params.max_steiner));
+    const r2d::ThinEstimate thin =
+        prepared ? prepared->thin_parts(tan_theta, max_width) : estimate_thin_parts(mesh, tan_theta, max_width);
     const double points = 0.5 * thin.triangles;  // about 2 triangles per point, or fewer
     if (std::getenv("GDR_TRACE"))
       std::fprintf(stderr, "gdr-trace thin parts: at least %.3g triangles (thinnest %.3g wide), %.3f s\n",
