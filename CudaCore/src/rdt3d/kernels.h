@@ -55,6 +55,7 @@ enum : int {
   kRestrictedBits = 15 << m3d::kCollectShift,
   kInterior = 1 << (m3d::kCollectShift + 4),  // the circumcentre lies inside the surface
   kBadFacet0 = 1 << (m3d::kCollectShift + 5),  // bits 24-27: restricted face i fails a criterion
+  kBadCell = 1 << (m3d::kCollectShift + 9),    // inside, and fails a cell criterion
 };
 
 // Candidate::a of a point on the surface (a free point otherwise, a = -1): its point type is
@@ -315,11 +316,15 @@ struct KeepFeatures {
 // Cell criteria, for tetrahedra inside the surface: radius-edge ratio above
 // CellRadiusEdgeRatio, circumradius above CellSize.
 enum : int { kCellGood = 0, kCellShape = 1, kCellSize = 2 };
-GDR_HD_INLINE int classify_cell(const TetView& m, const Criteria& c, int t, const TetSize& s) {
-  if (!c.volume || !(m.tflag[t] & kInterior)) return kCellGood;
+GDR_HD_INLINE int cell_class(const Criteria& c, const TetSize& s) {
   if (c.cell_size2 > 0 && s.r2 > c.cell_size2) return kCellSize;
   if (c.radius_edge2 > 0 && s.r2 > c.radius_edge2 * s.lmin2) return kCellShape;
   return kCellGood;
+}
+
+GDR_HD_INLINE int classify_cell(const TetView& m, const Criteria& c, int t, const TetSize& s) {
+  if (!c.volume || !(m.tflag[t] & kInterior)) return kCellGood;
+  return cell_class(c, s);
 }
 
 // The sliver pass after refinement (mesh3d/smooth.h) works on the tetrahedra inside the
@@ -396,6 +401,9 @@ struct ClassifyFresh {
         (known >= 0 && !contacts.touch ? ((m.tflag[known] & kInterior) != 0) != ((contacts.crossings & 1) != 0)
                                        : inside_surface(s, o, c.reach));
     set_bit(t, kInterior, inside);
+    // Kept while the tetrahedron lives (its corners do not move during refinement): the
+    // collect phase reads the bit instead of measuring every cell in every iteration.
+    set_bit(t, kBadCell, c.volume && inside && cell_class(c, tet_size(m, t)) != kCellGood);
   }
   GDR_HD void set_bit(int t, int bit, bool on) const {
     if (on) exec::atomic_or(&m.tflag[t], bit);
@@ -412,7 +420,7 @@ struct ClearFresh {
 // Collect (S4: one list): feature subsegments to split, bad restricted facets and bad
 // tetrahedra inside the surface, as 16t + slot (slot f < 4: face f; slot 4: the tetrahedron;
 // slot 5 + e: edge e). The count per tetrahedron goes to aux, which the engine scans in place
-// into list offsets. Facets are read off the bits ClassifyFresh keeps; a protected
+// into list offsets. Facets and cells are read off the bits ClassifyFresh keeps; a protected
 // tetrahedron lists no facet and no cell (exceptions).
 enum : int { kSlotCell = 4, kSlotEdge0 = 5, kSlots = 11 };
 
@@ -433,10 +441,7 @@ GDR_HD_INLINE int collect_mask(const TetView& m, const Criteria& c, int t) {
     }
     if ((flags & (kBadFacet0 << f)) && owns_face(m, t, f)) mask |= 1 << f;
   }
-  if (c.volume && (flags & kInterior)) {
-    const TetSize sz = tet_size(m, t);
-    if (classify_cell(m, c, t, sz) != kCellGood) mask |= 1 << kSlotCell;
-  }
+  if (c.volume && (flags & kBadCell)) mask |= 1 << kSlotCell;
   return mask;
 }
 
