@@ -525,10 +525,11 @@ GDR_HD_INLINE int fan_apex(const TetView& m, int u, int g, int a, int b) {
 }
 
 // The flip of subfaces (o, x, y), (y, x, w) to (o, x, w), (o, w, y) keeps the surface from
-// folding only if the quadrilateral o x w y is convex in the facet: x and y strictly on
-// either side of ow and o, w on either side of xy, in the projection along subface `ref`'s dominant normal axis (both
-// subfaces pass the lower index, so they decide alike). The tetrahedra with p do not show
-// it: p lies on or next to the facet, and their signs are then roundings.
+// folding only if the quadrilateral o x w y is convex in the facet: x, y strictly on either
+// side of ow and o, w on either side of xy, in the projection along subface `ref`'s dominant
+// normal axis (both subfaces pass the lower index, so they decide alike). The tetrahedra
+// with p do not show it: p lies on or next to the facet, and their signs are then roundings
+// (the cap of a turned cylinder folded over itself so).
 GDR_HD_INLINE bool flip_keeps_facet_flat(const TetView& m, int ref, int o, int x, int y, int w) {
   const int drop = subface_normal_axis(m, ref);
   const int ax = drop == 0 ? 1 : 0, ay = drop == 2 ? 1 : 2;
