@@ -38,9 +38,15 @@ vtk_module_build(
 
 # gdr 2d reads .vtp/.vtk polydata through the filters' converter (apps/gdr/vtk_input.cpp),
 # so that the CLI and the filter take the same lines and polygons as segments.
+# That code is a module gdr loads only for such inputs (apps/gdr/vtk_input.h): VTK's
+# libraries cost every run 25 ms of loading otherwise.
+add_library(gdr_vtk_reader MODULE "${PROJECT_SOURCE_DIR}/apps/gdr/vtk_reader_module.cpp")
+target_include_directories(gdr_vtk_reader PRIVATE "${PROJECT_SOURCE_DIR}/Filters" "${PROJECT_SOURCE_DIR}/CudaCore/include")
+target_link_libraries(gdr_vtk_reader PRIVATE GPUDelaunay::GPUDelaunayFilters VTK::IOXML VTK::IOLegacy)
+set_target_properties(gdr_vtk_reader PROPERTIES CXX_VISIBILITY_PRESET hidden)
 target_compile_definitions(gdr PRIVATE GDR_CLI_HAVE_VTK=1)
-target_include_directories(gdr PRIVATE "${PROJECT_SOURCE_DIR}/Filters")
-target_link_libraries(gdr PRIVATE GPUDelaunay::GPUDelaunayFilters VTK::IOXML VTK::IOLegacy)
+target_link_libraries(gdr PRIVATE ${CMAKE_DL_LIBS})
+add_dependencies(gdr gdr_vtk_reader)
 
 # --- Python package `gpudelaunay` ----------------------------------------------
 # Build tree: <build>/python/gpudelaunay; set PYTHONPATH=<build>/python.

@@ -3,20 +3,13 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
-
-#include "gdr/error.h"
+#include <vector>
 
 #if defined(GDR_CLI_HAVE_VTK)
-#include <vtkCallbackCommand.h>
-#include <vtkCommand.h>
-#include <vtkExecutive.h>
-#include <vtkNew.h>
-#include <vtkPolyData.h>
-#include <vtkPolyDataReader.h>
-#include <vtkXMLPolyDataReader.h>
-
-#include "vtkGDRConversion.h"
+#include <dlfcn.h>
 #endif
+
+#include "gdr/error.h"
 
 namespace gdr::cli {
 
@@ -36,47 +29,37 @@ bool is_vtk_polydata(const std::string& path) {
 
 #if defined(GDR_CLI_HAVE_VTK)
 
-namespace {
-// Reads with `reader`, turning VTK's error events into the message of an IoError.
-template <class Reader>
-vtkPolyData* read(Reader* reader, const std::string& path, std::string& error) {
-  vtkNew<vtkCallbackCommand> on_error;
-  on_error->SetClientData(&error);
-  on_error->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
-    auto* text = static_cast<std::string*>(client);
-    if (text->empty() && call) *text = static_cast<const char*>(call);
-  });
-  reader->AddObserver(vtkCommand::ErrorEvent, on_error);
-  reader->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, on_error);
-  reader->SetFileName(path.c_str());
-  reader->Update();
-  return reader->GetOutput();
-}
-}  // namespace
-
+// The VTK reader module (vtk_reader_module.cpp) beside gdr: build/lib next to build/bin, or
+// wherever the loader's search path finds it.
 Pslg read_vtk_pslg(const std::string& path, std::string& warning) {
   if (!std::filesystem::exists(path)) throw Error(Status::IoError, path + ": no such file");
-  std::string error;
-  vtkPolyData* data = nullptr;
-  vtkNew<vtkXMLPolyDataReader> xml;
-  vtkNew<vtkPolyDataReader> legacy;
-  if (lower_extension(path) == ".vtp") {
-    data = read(xml.Get(), path, error);
-  } else {
-    legacy->SetFileName(path.c_str());
-    legacy->ReadAllScalarsOn();  // not only the first: BoundaryMarker and PointAttributes
-    if (!legacy->IsFilePolyData())
-      throw Error(Status::IoError, path + ": not legacy VTK polydata (gdr 2d reads lines and polygons)");
-    data = read(legacy.Get(), path, error);
+  using Read = bool (*)(const char*, bool, Pslg*, std::string*, std::string*);
+  static Read reader = nullptr;
+  std::string tried;
+  if (!reader) {
+    std::error_code ec;
+    const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+    std::vector<std::string> candidates;
+    if (!ec) {
+      candidates.push_back((exe.parent_path() / "../lib/libgdr_vtk_reader.so").string());
+      candidates.push_back((exe.parent_path() / "libgdr_vtk_reader.so").string());
+    }
+    candidates.push_back("libgdr_vtk_reader.so");
+    for (const std::string& c : candidates) {
+      if (void* handle = dlopen(c.c_str(), RTLD_NOW | RTLD_LOCAL)) {
+        reader = reinterpret_cast<Read>(dlsym(handle, "gdr_cli_read_vtk_pslg"));
+        if (reader) break;
+      }
+      const char* why = dlerror();
+      tried += "\n  " + (why ? std::string(why) : c);  // dlerror names the file
+    }
   }
-  if (!error.empty()) {
-    // VTK's text: "ERROR: In FILE, line N\nvtkClass (0x...): MESSAGE"
-    const std::size_t at = error.find("): ");
-    throw Error(Status::IoError, path + ": " + (at == std::string::npos ? error : error.substr(at + 3)));
-  }
+  if (!reader)
+    throw Error(Status::IoError, path + ": gdr cannot load its VTK reader (libgdr_vtk_reader.so), which reading "
+                                        ".vtp and .vtk needs; tried:" + tried);
   Pslg pslg;
-  double z = 0;
-  vtkGDRConversion::ToPslg(data, nullptr, pslg, z, warning);
+  std::string error;
+  if (!reader(path.c_str(), lower_extension(path) == ".vtp", &pslg, &warning, &error)) throw Error(Status::IoError, error);
   return pslg;
 }
 

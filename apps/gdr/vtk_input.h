@@ -1,7 +1,8 @@
 // VTK polydata (.vtp XML, .vtk legacy) as 2D input, in builds with VTK: read with VTK's
 // readers and converted by the filters' converter (vtkGDRConversion::ToPslg), so that gdr 2d
-// and the ParaView filter take the same lines and polygons as segments. Without VTK the CLI
-// stays VTK-free and refuses these inputs with a message that says why.
+// and the ParaView filter take the same lines and polygons as segments. That code is a module
+// (libgdr_vtk_reader.so, vtk_reader_module.cpp) loaded only when such an input comes, so that
+// gdr itself links no VTK. Without VTK these inputs are refused with a message that says why.
 #pragma once
 #include <string>
 
