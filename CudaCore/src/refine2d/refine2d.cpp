@@ -66,6 +66,13 @@ r2d::Criteria make_criteria(const Refine2dOptions& o) {
 // 8,182 points and a stall against 1,487). Fans down to 1.7e-5 rad meshed alike both ways.
 constexpr int kOneAtATimeThreads = 4;
 constexpr double kOneAtATimeLeastAngle = 1e-5;
+// Below this many estimated output triangles the CPU refines on at most kOneAtATimeThreads
+// threads (so one point at a time), whatever the machine has: on the H200 machine's 16
+// threads the parallel iteration's synchronisation cost more than its threads gave on a
+// 5k-segment map (0.09-0.20 s for the whole process against 0.06 s on one thread, Triangle
+// 0.05 s; hundred-and-sixth run), while maps of 25-30k points (about 100k triangles) ran
+// 1.5x faster on 16 threads. As gQM3d's threads follow its mesh.
+constexpr double kFewThreadsTriangles = 40000;
 
 // Whether two segments meet at a shared point at an angle below `angle` radians (small).
 // Most points of a map end two segments: their pair is tested with one cross and one dot
@@ -666,7 +673,9 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
                         : resolve_backend(options.backend,
                                           static_cast<std::size_t>(std::min(estimate.typical, 1e15)),
                                           gpu_min_triangles(options));
-  const int engine_threads = options.deterministic ? 1 : cpu_threads();
+  const int engine_threads = options.deterministic ? 1
+                             : estimate.typical < kFewThreadsTriangles ? std::min(cpu_threads(), kOneAtATimeThreads)
+                                                                      : cpu_threads();
   if (prepared && (st.backend_used == Backend::Gpu) != cdt.gpu) {  // refined elsewhere
     mesh = prepared->download();
     prepared.reset();
