@@ -483,7 +483,11 @@ void check_pieces_on_their_segments(const Pslg& in, const CleanPslg& g, double e
     const int o = g.segment_origin[k];
     const Point2 &a = in.points[in.segments[o][0]], &b = in.points[in.segments[o][1]];
     const double dx = b.x - a.x, dy = b.y - a.y, len = std::hypot(dx, dy);
-    const double slack = 16 * eps + 1e-9 * len;  // eps: each of up to 8 merging rounds
+    // eps: each of up to 8 merging rounds, at most the segment's own precision (its
+    // coordinates' magnitude: a segment near the origin of an input whose extent is 1e13
+    // times larger was routed through points 1.5 units away, within the extent's precision).
+    const double own = std::ldexp(std::max({std::fabs(a.x), std::fabs(a.y), std::fabs(b.x), std::fabs(b.y), len}), -40);
+    const double slack = 16 * std::min(eps, own) + 1e-9 * len;
     for (const int v : g.segments[k]) {
       const Point2& p = g.points[v];
       const double along = ((p.x - a.x) * dx + (p.y - a.y) * dy) / len;
@@ -492,8 +496,9 @@ void check_pieces_on_their_segments(const Pslg& in, const CleanPslg& g, double e
       const long long f = in.first_index;
       std::ostringstream m;
       m << "segment " << o + f << " (points " << in.segments[o][0] + f << " and " << in.segments[o][1] + f
-        << ") could not be split consistently where it crosses others: many segments cross within "
-           "rounding of one another, and its pieces reach "
+        << ") could not be split consistently where it crosses others (many segments crossing within "
+           "rounding of one another, or coordinates that span too many orders of magnitude): its "
+           "pieces reach "
         << (g.point_origin[v] >= 0 ? "point " + std::to_string(g.point_origin[v] + f) : std::string("an intersection point"))
         << ", off the segment; give the segments one input point where they cross";
       throw Error(Status::InvalidInput, m.str());
