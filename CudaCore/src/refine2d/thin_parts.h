@@ -65,6 +65,7 @@ GDR_HD inline ThinAt thin_parts_at(int t, const int* tv, const int* tn, const in
       int u = t, entry = e, hit = -1;
       for (int step = 0; step < kMaxSteps && hit < 0; ++step) {
         int exit = -1;
+        double h = 0;  // the ray's height where it leaves
         for (int j = 0; j < 3; ++j) {
           if (j == entry) continue;
           const double* p = xy + 2 * tv[3 * u + (j + 1) % 3];
@@ -75,20 +76,13 @@ GDR_HD inline ThinAt thin_parts_at(int t, const int* tv, const int* tn, const in
           const double sq = (q[0] - o[0]) * ny - (q[1] - o[1]) * nx;
           if ((sp <= 0 && sq >= 0) || (sp >= 0 && sq <= 0)) {
             exit = j;
+            const double hp = (p[0] - o[0]) * nx + (p[1] - o[1]) * ny;
+            const double hq = (q[0] - o[0]) * nx + (q[1] - o[1]) * ny;
+            h = sp == sq ? fmin(hp, hq) : (hp * sq - hq * sp) / (sq - sp);
             break;
           }
         }
-        if (exit < 0) break;
-        if (max_width > 0) {  // the ray's height where it leaves: beyond the limit, stop
-          const double* p = xy + 2 * tv[3 * u + (exit + 1) % 3];
-          const double* q = xy + 2 * tv[3 * u + (exit + 2) % 3];
-          const double sp = (p[0] - o[0]) * ny - (p[1] - o[1]) * nx;
-          const double sq = (q[0] - o[0]) * ny - (q[1] - o[1]) * nx;
-          const double hp = (p[0] - o[0]) * nx + (p[1] - o[1]) * ny;
-          const double hq = (q[0] - o[0]) * nx + (q[1] - o[1]) * ny;
-          const double h = sp == sq ? fmin(hp, hq) : (hp * sq - hq * sp) / (sq - sp);
-          if (h > max_width) break;
-        }
+        if (exit < 0 || (max_width > 0 && h > max_width)) break;  // beyond the limit: stop
         if (ts[3 * u + exit] >= 0) {
           hit = ts[3 * u + exit];
           break;
