@@ -132,7 +132,9 @@ double coordinate_slack(const std::vector<P>& points) {
 // `slack`: the rounding of the coordinates themselves (coordinate_slack). Distances are taken
 // on coordinates scaled by a power of two (exact) to about 1: at 1e95 and beyond the squares
 // overflowed to infinity, and every vertex passed (a 2D star at 1e156 failed --check only
-// when scaled down to 3e5).
+// when scaled down to 3e5). Where several subsegments qualify, the one nearest the line is
+// followed first and the others are tried if it leads nowhere: at 6e11, a hull subsegment
+// 0.4 off the segment but within its tolerance was taken for the segment's next piece.
 template <class P, class A>
 bool follow_segment(const std::vector<P, A>& points, const SubsegmentGraph& graph, int a, int b,
                     double tolerance, double slack = 0) {
@@ -148,34 +150,38 @@ bool follow_segment(const std::vector<P, A>& points, const SubsegmentGraph& grap
   slack = std::ldexp(slack, k);
   const double d[3] = {pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]};
   const double len2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-  int cur = a;
-  double progress = 0;
-  while (cur != b) {
-    int best = -1;
-    double best_t = 2;
-    for (std::size_t k = graph.start[cur]; k < graph.start[cur + 1]; ++k) {
-      const int w = graph.next[k];
-      if (w == b) {
-        best = b;
-        break;
-      }
+  const double allowed = tolerance * len2 + slack * std::sqrt(len2);
+  // Depth first, progress strictly increasing (so no cycles); the budget, twice the
+  // subsegment ends (a chain takes one step per vertex), bounds pathological branching.
+  struct Step {
+    int v;
+    double t;
+  };
+  std::vector<Step> stack{{a, 0.0}};
+  std::vector<std::pair<double, Step>> next;  // (distance squared, step)
+  for (std::size_t budget = 2 * graph.next.size() + 64; !stack.empty() && budget > 0; --budget) {
+    const Step cur = stack.back();
+    stack.pop_back();
+    next.clear();
+    for (std::size_t j = graph.start[cur.v]; j < graph.start[cur.v + 1]; ++j) {
+      const int w = graph.next[j];
+      if (w == b) return true;
       const auto pw = scaled(xyz(points[w]));
       const double r[3] = {pw[0] - pa[0], pw[1] - pa[1], pw[2] - pa[2]};
       const double t = (r[0] * d[0] + r[1] * d[1] + r[2] * d[2]) / len2;
-      if (!(t > progress && t < 1 && t < best_t)) continue;
+      if (!(t > cur.t && t < 1)) continue;
       const double cx = r[1] * d[2] - r[2] * d[1], cy = r[2] * d[0] - r[0] * d[2],
                    cz = r[0] * d[1] - r[1] * d[0];
       // |r x d| / |d| is the distance from the line; compare squares to avoid roots.
-      const double allowed = tolerance * len2 + slack * std::sqrt(len2);
-      if (cx * cx + cy * cy + cz * cz > allowed * allowed) continue;
-      best = w;
-      best_t = t;
+      const double off2 = cx * cx + cy * cy + cz * cz;
+      if (off2 > allowed * allowed) continue;
+      next.push_back({off2, Step{w, t}});
     }
-    if (best < 0) return false;
-    cur = best;
-    progress = best_t;
+    // The nearest to the line last, so that it is popped first.
+    std::sort(next.begin(), next.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
+    for (const auto& n : next) stack.push_back(n.second);
   }
-  return true;
+  return false;
 }
 
 }  // namespace gdr::validate
