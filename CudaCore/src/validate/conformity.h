@@ -157,8 +157,10 @@ bool follow_segment(const std::vector<P, A>& points, const SubsegmentGraph& grap
     int v;
     double t;
   };
-  std::vector<Step> stack{{a, 0.0}};
-  std::vector<std::pair<double, Step>> next;  // (distance squared, step)
+  // Scratch kept per thread: the validators call this for every segment, in parallel.
+  thread_local std::vector<Step> stack;
+  thread_local std::vector<std::pair<double, Step>> next;  // (distance squared, step)
+  stack.assign(1, Step{a, 0.0});
   for (std::size_t budget = 2 * graph.next.size() + 64; !stack.empty() && budget > 0; --budget) {
     const Step cur = stack.back();
     stack.pop_back();
