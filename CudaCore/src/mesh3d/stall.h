@@ -10,8 +10,12 @@
 // `turnover` (gDP3d), a window in which at least as many points went in as there were
 // elements to split at its start is progress too: its end game near narrow slots and
 // features inserts a few points per iteration while the few elements left change, and was
-// stopped there with the surface unresolved (a CAD part, 1 run in 8, issue 12). Host code,
-// one per run.
+// stopped there with the surface unresolved (a CAD part, 1 run in 8, issue 12). With a
+// `volume_floor` (gQM3d), growth counts only together with a shrinking bad volume once that
+// volume is below the floor: late in a run, points that only make as many bad elements as
+// they fix are a cascade (a turned CAD part's nearly planar cap, read as float32: the GPU,
+// inserting more per iteration, kept growing by a quarter per window to 2M tetrahedra where
+// the CPU stopped at 180k). Host code, one per run.
 #pragma once
 #include <algorithm>
 #include <cstddef>
@@ -21,20 +25,26 @@ namespace gdr::m3d {
 
 class StallDetector {
  public:
-  explicit StallDetector(bool turnover = false) : turnover_(turnover) {}
+  explicit StallDetector(bool turnover = false, double volume_floor = -1)
+      : turnover_(turnover), volume_floor_(volume_floor) {}
 
   // Records one iteration: elements left to split, points in the mesh and the volume of the
-  // bad tetrahedra (0 where not measured). True: stalled.
+  // bad tetrahedra (0 where not measured). Without a volume floor the volume counts as given;
+  // with one, a shrinking volume counts while it is above the floor. True: stalled.
   bool stalled(std::size_t backlog, long long points, double bad_volume = 0) {
     backlog_.push_back(backlog);
     points_.push_back(points);
     volume_.push_back(bad_volume);
     const std::size_t n = backlog_.size();
-    const bool shrinking = n <= kWindow || 50 * backlog <= 49 * backlog_[n - 1 - kWindow] ||
-                           4 * points >= 5 * points_[n - 1 - kWindow] ||
-                           50 * bad_volume < 49 * volume_[n - 1 - kWindow] ||
-                           (turnover_ && points - points_[n - 1 - kWindow] >=
-                                             static_cast<long long>(std::max(backlog_[n - 1 - kWindow], kWindow)));
+    bool shrinking = n <= kWindow;
+    if (!shrinking) {
+      const std::size_t w = n - 1 - kWindow;  // the window's start
+      const bool volume_shrank = 50 * bad_volume < 49 * volume_[w];
+      const bool end_game = volume_floor_ >= 0 && volume_[w] <= volume_floor_;
+      const bool grew = 4 * points >= 5 * points_[w];
+      shrinking = 50 * backlog <= 49 * backlog_[w] || (end_game ? grew && volume_shrank : grew || volume_shrank) ||
+                  (turnover_ && points - points_[w] >= static_cast<long long>(std::max(backlog_[w], kWindow)));
+    }
     bool unchanged = n > kSame;
     for (std::size_t k = 1; unchanged && k <= kSame; ++k) unchanged = backlog_[n - 1 - k] == backlog;
     return !shrinking || unchanged;
@@ -50,6 +60,7 @@ class StallDetector {
  private:
   static constexpr std::size_t kWindow = 40, kSame = 6;
   bool turnover_;
+  double volume_floor_;
   std::vector<std::size_t> backlog_;
   std::vector<long long> points_;
   std::vector<double> volume_;

@@ -146,6 +146,7 @@ struct Engine {
     const std::size_t mem_base = exec::memory_counter<Space>().current;
     dm.upload(host);
     domain_volume = six_volume(dm.ntet, [] GDR_HD(int) { return true; });
+    stall = m3d::StallDetector(false, 0.05 * domain_volume);
     initial_points = dm.npts;
     counters.resize_discard(kCounters);
     counters.zero();
@@ -176,10 +177,11 @@ struct Engine {
         res.stalled = true;
         break;
       }
-      // The bad volume counts as progress only while it is a large share of the domain (the
-      // interior still empty), not in a cascade of ever smaller bad tetrahedra near small
-      // input angles, which would otherwise go on shrinking it.
-      if (stall.stalled(nl, dm.npts, bad_volume > 0.05 * domain_volume ? bad_volume : 0.0)) {
+      // The bad volume counts as progress on its own only while it is a large share of the
+      // domain (the interior still empty), not in a cascade of ever smaller bad tetrahedra
+      // near small input angles, which would otherwise go on shrinking it; later, growth
+      // counts only with it shrinking.
+      if (stall.stalled(nl, dm.npts, bad_volume)) {
         res.stalled = true;  // mesh3d/stall.h
         break;
       }

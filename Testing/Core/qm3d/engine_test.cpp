@@ -605,6 +605,27 @@ TEST(StallDetector, ShrinkingBadVolumeIsProgress) {
   EXPECT_TRUE(c);
 }
 
+// gQM3d's end game (a volume floor): a cascade that keeps the backlog and the bad volume as
+// they are while the mesh grows by a quarter per window is a stall (a turned CAD part's
+// nearly planar cap grew to 2M tetrahedra on the GPU); growth with the bad volume shrinking
+// is progress, and above the floor growth counts alone, as without a floor.
+TEST(StallDetector, GrowthAloneIsNoProgressBelowTheVolumeFloor) {
+  gdr::m3d::StallDetector cascade(false, 0.05), shrinking(false, 0.05), early(false, 0.05), no_floor;
+  bool a = false, b = false, c = false, d = false;
+  for (int i = 0; i < 200; ++i) {
+    const std::size_t backlog = 6000 + (i * 37) % 200;                    // not shrinking
+    const long long points = static_cast<long long>(40000 * std::pow(1.01, i));  // +49% per window
+    a = a || cascade.stalled(backlog, points, 0.001);
+    b = b || shrinking.stalled(backlog, points, 0.001 * std::pow(0.99, i));
+    c = c || early.stalled(backlog, points, 0.5);
+    d = d || no_floor.stalled(backlog, points);
+  }
+  EXPECT_TRUE(a);
+  EXPECT_FALSE(b);
+  EXPECT_FALSE(c);
+  EXPECT_FALSE(d);
+}
+
 // gDP3d's end game (turnover): a few elements left that change as 3 points per iteration go
 // in, the backlog wandering between 10 and 30 and the mesh growing by under a quarter per
 // window. Progress with turnover counted; without it (gQM3d's rule) a stall. A backlog of
