@@ -83,6 +83,8 @@ struct Engine {
   Buf<double> sxyz, sbox;
   Buf<int> stri, sorder, skids;
   Buf<int> deg, counts;  // the manifold criterion's facets per vertex and tallies
+  Buf<int> stamp;        // per point: the manifold check due to look at it (MarkNonManifold)
+  int epoch = 1;         // the next manifold check's number
   AabbView tree{};
   bool stagnant = false;
   bool features = false;  // the mesh has feature subsegments
@@ -197,7 +199,8 @@ struct Engine {
   void classify() {
     const m3d::TetView mv = core.dm.view();
     Ops::for_each(core.dm.ntet, ClassifyFresh{mv, tree, params.criteria});
-    Ops::for_each(core.dm.ntet, ClearFresh{mv});
+    if (params.manifold) stamp.resize(core.dm.npts);  // new points: all corners of new tetrahedra
+    Ops::for_each(core.dm.ntet, ClearFresh{mv, params.manifold ? stamp.data() : nullptr, epoch});
     core.clock.template stop<Space>("classify");
   }
 
@@ -211,7 +214,10 @@ struct Engine {
     counts.zero();
     const m3d::TetView mv = dm.view();
     Ops::for_each(dm.ntet, CountSurfaceFacets{mv, params.criteria, deg.data()});
-    Ops::for_each(dm.ntet, MarkNonManifold{mv, params.criteria, deg.data(), counts.data(), mark});
+    // Each check with `mark` looks only where the surface changed since the last (stamps).
+    Ops::for_each(dm.ntet, MarkNonManifold{mv, params.criteria, deg.data(), counts.data(), mark,
+                                           mark ? stamp.data() : nullptr, epoch});
+    if (mark) ++epoch;
     int n[2];
     counts.download(n, 2);
     deg.release();

@@ -411,9 +411,18 @@ struct ClassifyFresh {
   }
 };
 
+// With `stamp`: the corners of the new tetrahedra get `epoch`, the manifold check that is
+// to look at them next (MarkNonManifold).
 struct ClearFresh {
   TetView m;
-  GDR_HD void operator()(long long i) const { m.tflag[i] &= ~m3d::kFresh; }
+  int* stamp = nullptr;
+  int epoch = 0;
+  GDR_HD void operator()(long long i) const {
+    if (!(m.tflag[i] & m3d::kFresh)) return;
+    m.tflag[i] &= ~m3d::kFresh;
+    if (stamp)
+      for (int q = 0; q < 4; ++q) stamp[m.tv[4 * i + q]] = epoch;
+  }
 };
 
 // ---------------------------------------------------------------------------------------
@@ -638,13 +647,19 @@ struct CountSurfaceFacets {
 
 // A surface facet at a non-manifold edge or vertex is split (kSplitFace0 on its owner), unless
 // its tetrahedra are protected or it is below manifold_min. counts[0]: facets at such places,
-// counts[1]: of those, marked for splitting.
+// counts[1]: of those, marked for splitting. With `stamp` (a round of the criterion), only
+// facets with a corner stamped `epoch` or later are looked at: the facets at an edge or round
+// a vertex change only where new tetrahedra have it as a corner (ClearFresh stamps those), and
+// the facets found at fault now are looked at again next time (epoch + 1). Without it, every
+// facet (the count at the end).
 struct MarkNonManifold {
   TetView m;
   Criteria c;
   const int* deg;
   int* counts;
   bool mark;  // false: count only
+  int* stamp = nullptr;
+  int epoch = 0;
   GDR_HD void operator()(long long i) const {
     const int t = static_cast<int>(i);
     if (m.tflag[t] & m3d::kDead) return;
@@ -652,6 +667,7 @@ struct MarkNonManifold {
       if (!owns_face(m, t, f) || !surface_facet(m, c, t, f)) continue;
       int v[3];
       for (int q = 0; q < 3; ++q) v[q] = m.tv[4 * t + m3d::face_corner(f, q)];
+      if (stamp && stamp[v[0]] < epoch && stamp[v[1]] < epoch && stamp[v[2]] < epoch) continue;
       bool bad = false;
       for (int q = 0; q < 3 && !bad; ++q) {
         const int a = v[q], b = v[(q + 1) % 3];
@@ -664,6 +680,8 @@ struct MarkNonManifold {
       }
       if (!bad) continue;
       exec::atomic_add(&counts[0], 1);
+      if (stamp)
+        for (int q = 0; q < 3; ++q) stamp[v[q]] = epoch + 1;
       double longest2 = 0;
       for (int q = 0; q < 3; ++q) longest2 = fmax(longest2, m3d::dist2(pt(m, v[q]), pt(m, v[(q + 1) % 3])));
       const int nb = m.tn[4 * t + f];
