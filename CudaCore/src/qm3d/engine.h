@@ -123,6 +123,9 @@ struct Engine {
   // (CheckCavity::room_too, ComputeSplittingPoints::centroid_room).
   bool idle_twice = false;
   long long dead_tets = 0, dead_subs = 0;  // since the last compaction
+  // The new tetrahedra (kFresh) of the last insertion are those from here on: they are
+  // appended, unless a compaction moved them (then 0).
+  int fresh_from = 0;
   int rounds = 0;                          // ExpandList rounds of the last cavity phase
   const bool trace = std::getenv("GDR_TRACE") != nullptr;
 
@@ -605,6 +608,7 @@ struct Engine {
     const int new_tets = static_cast<int>(Ops::exclusive_scan(count.data(), count.data(), nt));
     const int new_subs = static_cast<int>(Ops::exclusive_scan(count2.data(), count2.data(), nt));
     const int old_ntet = dm.ntet, old_nsub = dm.nsub, old_npts = dm.npts;
+    fresh_from = old_ntet;
     Ops::for_each(nt, m3d::StoreSlotBase{dm.view(), tp, fl, count.data(), count2.data(), old_ntet, old_nsub});
     count.release();  // one int per tuple each: not held while the mesh arrays grow
     count2.release();
@@ -646,6 +650,7 @@ struct Engine {
     if (params.strategies.compaction && (10 * dead_tets > dm.ntet || 10 * dead_subs > dm.nsub)) {
       m3d::compact(dm);
       dead_tets = dead_subs = 0;
+      fresh_from = 0;
     }
     clock.template stop<Space>("compact");
   }
