@@ -808,6 +808,12 @@ Refine2dResult refine_2d(const Pslg& unscaled, const Refine2dOptions& user_optio
                  std::to_string(er.stuck) +
                  " bad elements remain, and 512 iterations did not halve them (a cascade, as "
                  "above 30 degrees or at tiny input angles); the mesh is valid: relax --min-angle");
+    else if (er.starved && cb.warning)
+      cb.warning("refinement stopped after " + std::to_string(er.iterations) + " iterations: " +
+                 std::to_string(er.stuck) +
+                 " bad elements remain, and 32 iterations inserted under a hundredth of that many "
+                 "points (a cascade at tiny input angles); the mesh is valid: relax --min-angle, "
+                 "or widen those angles");
     else if (er.stalled && cb.warning)
       cb.warning("refinement stopped: no point can split the " + std::to_string(er.stuck) +
                  " element(s) left (bad triangles or encroached subsegments)");
