@@ -627,6 +627,31 @@ TEST(InteriorSeeds, AxisAlignedBoxWithFineFaces) {
   checked_cdt(plc, true, seeds);
 }
 
+// A turned box 3e-7 wide (fuzz3d seed 42000340): each face's four corners are exactly
+// coplanar, and on one face TetGen's hull took the other diagonal than the input's two
+// triangles and glued a flat tetrahedron between them, classified inside: `gdr tet
+// --cdt-only` wrote it (orient3d = 0). It is dropped and the face's subfaces follow the
+// hull's diagonal: every tetrahedron positive, the volume the box's, both triangles covered.
+TEST(InitialCdt, FlatTetrahedronBetweenTwoDiagonalsOfAFaceIsDropped) {
+  Surface s;
+  s.points = {{0.0, -4.397924289464008e-05, 0.0},
+              {-2.0582209892823245e-07, -4.4108587114815436e-05, 2.0815680818419906e-08},
+              {-3.128177839565336e-07, -4.3920256309860813e-05, 1.331072101445307e-07},
+              {-1.0699568502830114e-07, -4.3790912089685455e-05, 1.122915293261108e-07},
+              {-7.559856642840943e-08, -4.3893641861466987e-05, -2.1559980552309875e-07},
+              {-2.8142066535664186e-07, -4.4022986081642345e-05, -1.9478412470467885e-07},
+              {-3.88416350384943e-07, -4.383465527668772e-05, -8.249259537856804e-08},
+              {-1.8259425145671057e-07, -4.3705311056512364e-05, -1.0330827619698795e-07}};
+  s.triangles = {{0, 1, 3}, {1, 2, 3}, {4, 6, 5}, {4, 7, 6}, {0, 3, 4}, {4, 3, 7},
+                 {1, 5, 2}, {5, 6, 2}, {0, 4, 1}, {4, 5, 1}, {3, 2, 7}, {7, 2, 6}};
+  const Plc plc = check_surface(s);
+  const m3d::HostTetMesh m = checked_cdt(plc);
+  for (int t = 0; t < m.tets(); ++t) {
+    std::set<int> corners(m.tv.begin() + 4 * t, m.tv.begin() + 4 * t + 4);
+    EXPECT_FALSE(corners == std::set<int>({1, 2, 5, 6})) << "the flat tetrahedron of face 1 2 6 5 is kept";
+  }
+}
+
 TEST(InitialCdt, TwoDisjointCubes) {
   Surface s = unit_cube();
   add_box(s, {3, 0, 0}, {4, 1, 1});
