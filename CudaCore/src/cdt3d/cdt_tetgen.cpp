@@ -23,7 +23,9 @@
 // the input surface unsplit) leaves faces that are not locally Delaunay (2958 on boat.off,
 // 318 on fandisk.off, 148 on penguin_hr.off) because TetGen then recovers the boundary with
 // interior Steiner points and flips; the refinement engine's cavities need a constrained
-// Delaunay mesh, so Y is only the fallback when "p" alone fails, with a warning.
+// Delaunay mesh, so Y is only the last attempt when "p" fails in every order (TetGen 1.5 on
+// many turned cylinders of fuzz3d), with a warning that counts the faces left not locally
+// Delaunay.
 #define TETLIBRARY
 #include <tetgen.h>
 
@@ -33,15 +35,16 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <csignal>
 #include <random>
 #include <numeric>
 #include <unordered_map>
-#include <unordered_set>
 
 #include "cdt3d/cdt3d.h"
 #include "cdt3d/geometry.h"
 #include "cdt3d/internal.h"
+#include "cdt3d/tet_edits.h"
 #include "cdt3d/tetgen_process.h"
 #include "gdr/error.h"
 #include "mesh3d/tet_topology.h"
@@ -423,83 +426,6 @@ HostTetMesh keep_domain(const Plc& plc, const HostTetMesh& full, const std::vect
   return m;
 }
 
-// Tetrahedra of zero volume (exact orient3d) on the domain's boundary: with "c", TetGen
-// triangulates the convex hull and glues a flat tetrahedron between a hull face pair and
-// the input's two triangles of the same coplanar quadrilateral when they use the other
-// diagonal (a turned box: its faces' corners are exactly coplanar), and classifies it
-// inside. Such a tetrahedron has two faces on the boundary (subfaces of one facet, nothing
-// beyond) and two towards the domain; it is dropped and its two inner faces become the
-// facet's subfaces instead (the validators let coplanar input triangles be retriangulated;
-// TetGen's diagonal is the Delaunay one). Unless the diagonal it drops is a segment.
-// Returns how many were dropped; other flat tetrahedra stay (refinement splits them).
-int drop_flat_boundary_tets(const Plc& plc, HostTetMesh& m) {
-  const int nt = m.tets();
-  std::vector<int> flat;
-#pragma omp parallel for schedule(static) if (nt > 20000)
-  for (int t = 0; t < nt; ++t) {
-    const double* p[4];
-    for (int k = 0; k < 4; ++k) p[k] = &m.xyz[3 * static_cast<std::size_t>(m.tv[4 * t + k])];
-    if (pred::orient3d(p[0], p[1], p[2], p[3]) == 0) {
-#pragma omp critical(gdr_cdt_flat)
-      flat.push_back(t);
-    }
-  }
-  if (flat.empty()) return 0;
-  std::sort(flat.begin(), flat.end());
-  std::unordered_set<std::uint64_t> segments;
-  for (const auto& g : plc.segments) segments.insert(edge_key(g[0], g[1]));
-  std::vector<char> dead(nt, 0);
-  int dropped = 0;
-  for (const int t : flat) {
-    int outer[2], inner[2], no = 0, ni = 0;
-    for (int i = 0; i < 4; ++i) {
-      const int x = 4 * t + i;
-      if (m.tsub[x] >= 0 && m.tn[x] < 0 && no < 2) outer[no++] = i;
-      else if (m.tsub[x] < 0 && m.tn[x] >= 0 && !dead[m.tn[x] / 4] && ni < 2) inner[ni++] = i;
-    }
-    if (no != 2 || ni != 2) continue;
-    const int s0 = m.tsub[4 * t + outer[0]], s1 = m.tsub[4 * t + outer[1]];
-    // The faces opposite corners i and j share the edge of the other two corners.
-    const int a = m.tv[4 * t + inner[0]], b = m.tv[4 * t + inner[1]];
-    if (m.sfacet[s0] != m.sfacet[s1] || segments.count(edge_key(a, b))) continue;
-    for (int k = 0; k < 2; ++k) {
-      // The subface slot of an outer face moves to an inner face, seen from the neighbour
-      // u across it: its corners counter-clockwise from outside u, so u is on side 0.
-      const int s = k == 0 ? s0 : s1, x = m.tn[4 * t + inner[k]], u = x / 4, j = x % 4;
-      for (int c = 0; c < 3; ++c) m.sv[3 * s + c] = m.tv[4 * u + m3d::face_corner(j, c)];
-      m.st[2 * s] = x;
-      m.st[2 * s + 1] = -1;
-      m.tn[x] = -1;
-      m.tsub[x] = s;
-    }
-    dead[t] = 1;
-    ++dropped;
-  }
-  if (dropped == 0) return 0;
-  std::vector<int> new_tet(nt, -1);
-  int kt = 0;
-  for (int t = 0; t < nt; ++t)
-    if (!dead[t]) new_tet[t] = kt++;
-  const auto map_face = [&](int x) { return x < 0 ? -1 : 4 * new_tet[x / 4] + x % 4; };
-  for (int t = 0; t < nt; ++t) {
-    const int u = new_tet[t];
-    if (u < 0) continue;
-    for (int k = 0; k < 4; ++k) {
-      m.tv[4 * u + k] = m.tv[4 * t + k];
-      m.tn[4 * u + k] = map_face(m.tn[4 * t + k]);
-      m.tsub[4 * u + k] = m.tsub[4 * t + k];
-    }
-    if (!m.tregion.empty()) m.tregion[u] = m.tregion[t];
-  }
-  m.tv.resize(4 * static_cast<std::size_t>(kt));
-  m.tn.resize(4 * static_cast<std::size_t>(kt));
-  m.tsub.resize(4 * static_cast<std::size_t>(kt));
-  m.tseg.resize(kt);
-  if (!m.tregion.empty()) m.tregion.resize(kt);
-  for (int& x : m.st) x = map_face(x);
-  return dropped;
-}
-
 // Per planar facet its largest triangle: the best conditioned plane to put its Steiner
 // points on (-1 for a facet merged across near-flat edges: points go on their subface).
 void set_facet_planes(const Plc& plc, HostTetMesh& m) {
@@ -639,9 +565,11 @@ m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks, const s
       {"pcnO0JQ", 0, "trying again without merging coplanar facets (-M)"},
       {"pcnO0JQM", 0, "trying again with the points in another order"},
       {"pcnO0JQM", 2, "trying again with the points in another order"},
-      {"pcnO0JQM", 3, nullptr},
+      {"pcnO0JQM", 3, "trying again with the input surface kept unsplit (-Y)"},
+      {"pcYnO0JQ", 0, nullptr},
   };
   constexpr int kCount = static_cast<int>(sizeof(kAttempts) / sizeof(kAttempts[0]));
+  bool unsplit = false;  // -Y: not constrained Delaunay everywhere until flipped
   for (int attempt = 0;; ++attempt) {
     const Attempt& a = kAttempts[attempt];
     std::iota(order.begin(), order.end(), 0);
@@ -650,15 +578,14 @@ m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks, const s
     fill_input(plc, seeds, order, in);
     if (attempt == 0) stamp("fill TetGen input");
     TetGenOutcome outcome;
-    bool unsplit = false;  // -Y: not constrained Delaunay everywhere, as the warning says
+    unsplit = std::strchr(a.switches, 'Y') != nullptr;
     try {
       outcome = run_tetgen_process(a.switches, in, out, limit, waiting);
     } catch (const Error& e) {
       if (e.status() == Status::OutOfDeviceMemory || e.status() == Status::Aborted) throw;
       if (callbacks.warning)
         callbacks.warning(std::string("TetGen's constrained Delaunay tetrahedralization failed (") + e.what() +
-                          "); retrying with the input surface kept unsplit (-Y): the result may not be "
-                          "constrained Delaunay everywhere");
+                          "); retrying with the input surface kept unsplit (-Y)");
       outcome = run_tetgen_process("pcYnO0JQ", in, out, limit, waiting);
       unsplit = true;
     }
@@ -694,7 +621,8 @@ m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks, const s
       throw TetGenAborted(what + ", in " + std::to_string(kCount) + " attempts" + close_parts(plc) +
                           ". The restricted Delaunay mesher (gdr rdt; GPU Restricted Delaunay 3D in "
                           "ParaView) meshes such surfaces without TetGen, approximating them");
-    if (callbacks.warning) callbacks.warning(what + "; " + a.next);
+    // Before the last resort, say why TetGen may have failed (parts nearly touching).
+    if (callbacks.warning) callbacks.warning(what + (attempt + 2 == kCount ? close_parts(plc) : "") + "; " + a.next);
   }
   HostTetMesh m = keep_domain(plc, full, cells);
   stamp("keep domain");
@@ -703,6 +631,16 @@ m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks, const s
   mark_subsegments(plc, m);
   set_facet_planes(plc, m);
   stamp("subsegments, facet planes");
+  if (unsplit && callbacks.warning) {
+    // Where the surface's own triangles are not Delaunay, no flip mends it (tried: Lawson's
+    // 2-3 and 3-2 flips mended none of 148-2959 such faces on the data set's surfaces):
+    // refinement splits them away; a mesh with them left fails --check.
+    const long long bad = non_delaunay_faces(m);
+    if (bad > 0)
+      callbacks.warning("the initial tetrahedralization (TetGen -Y) is not constrained Delaunay at " +
+                        std::to_string(bad) + " faces next to the surface; refinement removes them, "
+                        "a mesh with them left (--cdt-only, loose bounds) fails --check");
+  }
 #ifndef NDEBUG
   m3d::check_host_mesh(m);
 #endif
