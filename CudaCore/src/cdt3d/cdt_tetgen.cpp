@@ -240,6 +240,13 @@ HostTetMesh convert(const Plc& plc, const tetgenio& out) {
   }
 
   convert_tets(out, m);
+  // Every PLC point is a corner of a PLC triangle or segment, so of some tetrahedron and
+  // subface: a result without one counts as a failed attempt, not a mesh missing a corner.
+  std::vector<char> used(nin, 0);
+  for (const int v : m.tv)
+    if (v < nin) used[v] = 1;
+  for (int v = 0; v < nin; ++v)
+    if (!used[v]) internal("TetGen left out input point " + str(v));
 
   // Subfaces, found among the tet faces by their corners; the side by orientation.
   const int nsf = out.numberoftrifaces;
@@ -283,6 +290,13 @@ HostTetMesh convert(const Plc& plc, const tetgenio& out) {
     }
   }
   if (two_on_one_side >= 0) internal("subface " + str(two_on_one_side) + " has two tets on one side");
+  std::vector<char> on_surface(nin, 0);
+  for (int s = 0; s < nsf; ++s)
+    for (int k = 0; k < 3; ++k)
+      if (m.sv[3 * s + k] < nin) on_surface[m.sv[3 * s + k]] = 1;
+  for (const auto& t : plc.triangles)
+    for (const int v : t)
+      if (!on_surface[v]) internal("TetGen's subfaces leave out input point " + str(v));
   for (int s = 0; s < nsf; ++s)
     if (m.st[2 * s] < 0 && m.st[2 * s + 1] < 0) internal("subface " + str(s) + " is not a face of any tet");
   m.tseg.assign(nt, 0);
