@@ -41,6 +41,7 @@
 #include <numeric>
 #include <unordered_map>
 
+#include "cdt3d/bodies.h"
 #include "cdt3d/cdt3d.h"
 #include "cdt3d/geometry.h"
 #include "cdt3d/internal.h"
@@ -511,16 +512,28 @@ long long non_delaunay_faces(const HostTetMesh& m) {
 
 // Why TetGen may have failed: triangles that share no vertex yet come closer than its
 // tolerance can separate (1e-8 of the bounding box diagonal), e.g. parts 1e-12 apart.
-std::string close_parts(const Plc& plc) {
+double box_diagonal(const Plc& plc) {
   double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
   for (const Point3& p : plc.points) {
     const double* x = geom::xyz(p);
     for (int d = 0; d < 3; ++d) lo[d] = std::min(lo[d], x[d]), hi[d] = std::max(hi[d], x[d]);
   }
-  const double diag = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
-                                (hi[2] - lo[2]) * (hi[2] - lo[2]));
+  return std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                   (hi[2] - lo[2]) * (hi[2] - lo[2]));
+}
+
+// Do triangles of two bodies come within TetGen's tolerance of each other?
+bool bodies_nearly_touch(const Plc& plc, const Bodies& bodies) {
   std::vector<std::array<int, 2>> pairs;
-  const long long count = find_close_triangles(plc.points, plc.triangles, 1e-8 * diag, 5, pairs);
+  find_close_triangles(plc.points, plc.triangles, 1e-8 * box_diagonal(plc), 1000, pairs);
+  for (const auto& p : pairs)
+    if (bodies.of_triangle[p[0]] != bodies.of_triangle[p[1]]) return true;
+  return false;
+}
+
+std::string close_parts(const Plc& plc) {
+  std::vector<std::array<int, 2>> pairs;
+  const long long count = find_close_triangles(plc.points, plc.triangles, 1e-8 * box_diagonal(plc), 5, pairs);
   if (count == 0) return "";
   std::vector<std::string> items;
   for (const auto& p : pairs) {
@@ -533,21 +546,28 @@ std::string close_parts(const Plc& plc) {
          list_items(items, count);
 }
 
-}  // namespace
 
-m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks, const std::vector<double>& seeds) {
-  if (plc.triangle_cell.size() != plc.triangles.size() || plc.cell_in_domain.empty())
-    throw Error(Status::InvalidInput, "initial_cdt needs a closed surface checked with require_closed");
-  if (callbacks.progress) callbacks.progress(0.0, "constrained Delaunay tetrahedralization (TetGen)");
-  // GDR_TRACE: the time of each step on stderr (TetGen against our conversions).
-  const bool trace = std::getenv("GDR_TRACE") != nullptr;
-  auto last = std::chrono::steady_clock::now();
-  auto stamp = [&](const char* what) {
-    if (!trace) return;
+constexpr const char* kOtherMesher =
+    ". The restricted Delaunay mesher (gdr rdt; GPU Restricted Delaunay 3D in ParaView) meshes such "
+    "surfaces without TetGen, approximating them";
+
+// GDR_TRACE: the time of each step on stderr (TetGen against our conversions).
+struct Trace {
+  const bool on = std::getenv("GDR_TRACE") != nullptr;
+  std::chrono::steady_clock::time_point last = std::chrono::steady_clock::now();
+  void operator()(const char* what) {
+    if (!on) return;
     const auto now = std::chrono::steady_clock::now();
     std::fprintf(stderr, "gdr-trace cdt %s: %.3f s\n", what, std::chrono::duration<double>(now - last).count());
     last = now;
-  };
+  }
+};
+
+// TetGen's tetrahedralization of the domain of `plc` (cells outside removed, flat boundary
+// tetrahedra dropped), in the attempts below; the last, -Y, only where `last_resort`.
+// `unsplit` says whether -Y made it. Throws TetGenAborted (the last failure's reason).
+HostTetMesh domain_cdt(const Plc& plc, const Callbacks& callbacks, const std::vector<double>& seeds,
+                       bool last_resort, bool& unsplit, Trace& stamp) {
   // TetGen's facet recovery stops on an assertion, or loops, on some inputs (parts turned
   // to an angle, scan-like surfaces, nearly coplanar fans) for some point orders only: a
   // failure is retried without TetGen's merging of coplanar facets (M: every triangle
@@ -582,8 +602,7 @@ m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks, const s
       {"pcnO0JQM", 3, "trying again with the input surface kept unsplit (-Y)"},
       {"pcYnO0JQ", 0, nullptr},
   };
-  constexpr int kCount = static_cast<int>(sizeof(kAttempts) / sizeof(kAttempts[0]));
-  bool unsplit = false;  // -Y: not constrained Delaunay everywhere until flipped
+  const int count = static_cast<int>(sizeof(kAttempts) / sizeof(kAttempts[0])) - (last_resort ? 0 : 1);
   for (int attempt = 0;; ++attempt) {
     const Attempt& a = kAttempts[attempt];
     std::iota(order.begin(), order.end(), 0);
@@ -631,17 +650,57 @@ m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks, const s
                  ? std::string("TetGen stopped on one of its internal assertions (printed on the standard error)")
                  : "TetGen's process ended on signal " + std::to_string(outcome.signal);
     }
-    if (attempt + 1 == kCount)
-      throw TetGenAborted(what + ", in " + std::to_string(kCount) + " attempts" + close_parts(plc) +
-                          ". The restricted Delaunay mesher (gdr rdt; GPU Restricted Delaunay 3D in "
-                          "ParaView) meshes such surfaces without TetGen, approximating them");
+    if (attempt + 1 == count) throw TetGenAborted(what + ", in " + std::to_string(count) + " attempts" + close_parts(plc));
     // Before the last resort, say why TetGen may have failed (parts nearly touching).
-    if (callbacks.warning) callbacks.warning(what + (attempt + 2 == kCount ? close_parts(plc) : "") + "; " + a.next);
+    if (callbacks.warning) callbacks.warning(what + (attempt + 2 == count ? close_parts(plc) : "") + "; " + a.next);
   }
   HostTetMesh m = keep_domain(plc, full, cells);
   stamp("keep domain");
   const int flat = drop_flat_boundary_tets(plc, m);
-  if (trace) std::fprintf(stderr, "gdr-trace cdt flat boundary tets dropped: %d\n", flat);
+  if (stamp.on) std::fprintf(stderr, "gdr-trace cdt flat boundary tets dropped: %d\n", flat);
+  return m;
+}
+
+}  // namespace
+
+m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks, const std::vector<double>& seeds) {
+  if (plc.triangle_cell.size() != plc.triangles.size() || plc.cell_in_domain.empty())
+    throw Error(Status::InvalidInput, "initial_cdt needs a closed surface checked with require_closed");
+  if (callbacks.progress) callbacks.progress(0.0, "constrained Delaunay tetrahedralization (TetGen)");
+  Trace stamp;
+  // Bodies that share no cell are meshed one by one where TetGen fails on them together
+  // (parts nearly touching: its tolerance cannot separate them), before -Y.
+  // Bodies closer than TetGen's tolerance are meshed one by one from the start: TetGen failed
+  // on them together, some attempts only after its time limit (two boxes 1e-12 apart).
+  const Bodies bodies = find_bodies(plc);
+  const bool together = std::getenv("GDR_TETGEN_TOGETHER") != nullptr;  // tests: the retries on such input
+  const bool one_by_one = !together && bodies.count > 1 && bodies_nearly_touch(plc, bodies);
+  bool unsplit = false;
+  HostTetMesh m;
+  try {
+    if (one_by_one) throw TetGenAborted("bodies nearly touching");
+    m = domain_cdt(plc, callbacks, seeds, bodies.count < 2, unsplit, stamp);
+  } catch (const TetGenAborted& e) {
+    if (bodies.count < 2) throw TetGenAborted(std::string(e.what()) + kOtherMesher);
+    if (callbacks.warning && !one_by_one)
+      callbacks.warning(std::string(e.what()) + "; meshing the input's " + std::to_string(bodies.count) +
+                        " bodies (parts that share no space) one by one");
+    std::vector<BodyPlc> subs;
+    std::vector<HostTetMesh> parts;
+    for (int b = 0; b < bodies.count; ++b) {
+      subs.push_back(body_plc(plc, bodies, b, seeds));
+      bool body_unsplit = false;
+      try {
+        parts.push_back(domain_cdt(subs.back().plc, callbacks, subs.back().seeds, true, body_unsplit, stamp));
+      } catch (const TetGenAborted& eb) {
+        throw TetGenAborted("body " + std::to_string(b + 1) + " of " + std::to_string(bodies.count) + ": " +
+                            eb.what() + kOtherMesher);
+      }
+      unsplit = unsplit || body_unsplit;
+    }
+    m = merge_bodies(plc, subs, parts);
+    stamp("bodies merged");
+  }
   mark_subsegments(plc, m);
   set_facet_planes(plc, m);
   stamp("subsegments, facet planes");

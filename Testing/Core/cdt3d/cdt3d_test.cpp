@@ -13,6 +13,7 @@
 #include <functional>
 #include <string>
 
+#include "cdt3d/bodies.h"
 #include "cdt3d/cdt3d.h"
 #include "cdt3d/geometry.h"
 #include "gdr/error.h"
@@ -658,6 +659,44 @@ TEST(InitialCdt, TwoDisjointCubes) {
   add_box(s, {3, 0, 0}, {4, 1, 1});
   const m3d::HostTetMesh m = checked_cdt(check_surface(s));
   EXPECT_NEAR(mesh_volume(m), 2.0, 1e-14);
+}
+
+// Bodies: triangles sharing a point or a domain cell. Two cubes apart are two; cubes
+// touching at an edge or a vertex one (a segment or point they share is meshed once);
+// nested cubes one (the shell between them is one cell).
+TEST(Bodies, PointsAndCellsJoinTriangles) {
+  Surface apart = unit_cube();
+  add_box(apart, {3, 0, 0}, {4, 1, 1});
+  EXPECT_EQ(cdt3d::find_bodies(check_surface(apart)).count, 2);
+  Surface edge = unit_cube();
+  add_box(edge, {1, 0, 1}, {2, 1, 2});
+  EXPECT_EQ(cdt3d::find_bodies(check_surface(edge)).count, 1);
+  Surface nested = unit_cube();
+  add_box(nested, {0.25, 0.25, 0.25}, {0.75, 0.75, 0.75});
+  EXPECT_EQ(cdt3d::find_bodies(check_surface(nested)).count, 1);
+}
+
+// Two boxes 1e-12 apart, then 1e-12 apart with a third far away: TetGen failed on the
+// pair in every attempt (some only after its 10 s limit); bodies closer than its tolerance
+// are meshed one by one, and the merged mesh holds every point in the PLC's numbering.
+TEST(InitialCdt, NearlyTouchingBodiesAreMeshedOneByOne) {
+  Surface s = unit_cube();
+  add_box(s, {1 + 1e-12, 0, 0}, {2, 1, 1});
+  std::vector<std::string> warnings;
+  Callbacks cb;
+  cb.warning = [&](const std::string& w) { warnings.push_back(w); };
+  const m3d::HostTetMesh first = initial_cdt(check_surface(s), cb);
+  EXPECT_TRUE(warnings.empty()) << "TetGen was tried on both: " << warnings[0];
+  m3d::HostTetMesh m = checked_cdt(check_surface(s));
+  EXPECT_EQ(m.tets(), first.tets());
+  EXPECT_NEAR(mesh_volume(m), 2.0 - 1e-12, 1e-12);
+  add_box(s, {5, 0, 0}, {6, 1, 1});
+  const Plc plc = check_surface(s);
+  EXPECT_EQ(cdt3d::find_bodies(plc).count, 3);
+  m = checked_cdt(plc);
+  EXPECT_EQ(m.input_points, static_cast<int>(plc.points.size()));
+  for (int v = 0; v < m.input_points; ++v)
+    EXPECT_EQ(m.xyz[3 * v], plc.points[v].x) << "point " << v;
 }
 
 TEST(InitialCdt, CubesTouchingAtAnEdgeOrAVertex) {
