@@ -281,6 +281,9 @@ KNOWN = [
     # issue 12 (README, "thin parts and features"): next to features at small angles the
     # facets are protected and the surface can stay pinched; warned about
     (1, "--feature-angle", "is not a manifold at"),
+    # issue 12 (README, "thin parts"): parts thinner than the manifold criterion's floor
+    # (a thousandth of the diagonal) stay pinched; warned about, with the floor named
+    (1, None, "the input is thinner there than facets of"),
     # issue 12: a surface that touches itself at vertices (a mutated face joining two parts)
     # can have a restricted surface no orientation fits; warned about
     (1, None, "cannot be oriented consistently"),
