@@ -8,6 +8,7 @@
 // copy of them.
 #pragma once
 #include <algorithm>
+#include <climits>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -94,6 +95,14 @@ struct Engine {
   // floor (Criteria::manifold_min2), so the rounds end. The bound is a guard.
   static constexpr int kManifoldRounds = 200;
   int manifold_rounds = 0;
+  // collect(): the mesh size at the last collect (-1: renumbered since), the tetrahedra it
+  // listed, and the scratch of the collects between full scans.
+  static constexpr int kFullEvery = 16;
+  int collected_ntet = -1, since_full = 0;
+  bool last_collect_full = true;
+  Buf<int> prev_tets, cands, cand_keep, cand_scratch, first;
+  Buf<exec::u64> cand_keys;
+  const bool check_collect = std::getenv("GDR_CHECK_COLLECT") != nullptr;
 
   Engine(const EngineParams& p, const Callbacks& c) : params(p), cb(c), core(p.insertion, c) {}
 
@@ -120,11 +129,12 @@ struct Engine {
       core.check_abort();
       core.clock.restart();
       std::size_t nl = collect();  // line 4: bad facets and bad tetrahedra, one list
+      if (nl == 0 && !last_collect_full) nl = collect(true);  // nothing left: make sure
       // The manifold criterion, once every facet and cell meets the others (as CGAL's).
       if (nl == 0 && params.manifold && manifold_rounds < kManifoldRounds && non_manifold(true) > 0) {
         ++manifold_rounds;
         stall.restart();
-        nl = collect();
+        nl = collect(true);  // the rounds mark facets anywhere
       }
       if (nl == 0) break;
       const double bad = bad_cell_volume(nl);  // before insertion moves the listed cells
@@ -202,6 +212,7 @@ struct Engine {
     // compaction or the upload (two scans of the whole mesh per iteration were about 6% of
     // the refinement of a 650k-tetrahedron slab on two CPU threads).
     const int from = core.fresh_from, n = core.dm.ntet - from;
+    if (from == 0) collected_ntet = -1;  // compacted (or uploaded): renumbered
     const ClassifyFresh classify_one{mv, tree, params.criteria};
     Ops::for_each(n, [=] GDR_HD(long long i) { classify_one(from + i); });
     if (params.manifold) stamp.resize(core.dm.npts);  // new points: all corners of new tetrahedra
@@ -244,15 +255,127 @@ struct Engine {
     return core.six_volume(static_cast<int>(nl), [=] GDR_HD(int j) { return (l[j] & 15) == kSlotCell; }, l);
   }
 
-  std::size_t collect() {
+  // The elements to split, from a scan of every tetrahedron, or (most iterations) only of
+  // those whose elements can have changed since the last collect: the tetrahedra it listed,
+  // the new ones and their neighbours (whose shared facet a new tetrahedron classified), and
+  // the cavities' (where refusals mark facets and edges to split). Other kernels mark
+  // elements elsewhere now and then (a walk's exit face); a full scan every kFullEvery
+  // iterations, and before refinement ends, picks those up. Full scans were a fifth of the
+  // refinement of a 350k-tetrahedron slab on two CPU threads (700 iterations).
+  std::size_t collect(bool force_full = false) {
     auto& dm = core.dm;
+    const bool full = force_full || collected_ntet < 0 || ++since_full >= kFullEvery ||
+                      prev_tets.size() > static_cast<std::size_t>(dm.ntet) / 8;
+    std::size_t nl;
+    if (full) {
+      since_full = 0;
+      Ops::for_each(dm.ntet, CountBad{dm.view(), params.criteria});
+      int* cnt = dm.aux.data();
+      nl = static_cast<std::size_t>(Ops::exclusive_scan(cnt, cnt, dm.ntet));
+      core.list.resize_discard(nl);
+      if (nl)
+        Ops::for_each(dm.ntet, ListBad{dm.view(), params.criteria, core.list.data(), static_cast<int>(nl)});
+    } else {
+      nl = collect_changed();
+      if (check_collect) compare_with_full_scan(nl);
+    }
+    last_collect_full = full;
+    collected_ntet = dm.ntet;
+    // The listed tetrahedra, for the next collect (the list itself is scratch until then).
+    const int* l = core.list.data();
+    const std::size_t n = nl;
+    Buf<int>& tmp = cand_scratch;
+    const std::size_t np = exec::compact_indices<Space>(
+        n, [=] GDR_HD(long long j) { return j == 0 || (l[j] >> 4) != (l[j - 1] >> 4); }, prev_tets, tmp);
+    int* pt = prev_tets.data();
+    Ops::for_each(np, [=] GDR_HD(long long k) { pt[k] = l[pt[k]] >> 4; });
+    core.clock.template stop<Space>("collect");
+    return nl;
+  }
+
+  // Debugging and tests (GDR_CHECK_COLLECT): the list of the last collect_changed against a
+  // full scan's; an element it missed is an InternalError naming it.
+  void compare_with_full_scan(std::size_t nl) {
+    auto& dm = core.dm;
+    const std::vector<int> changed = core.list.to_host();
     Ops::for_each(dm.ntet, CountBad{dm.view(), params.criteria});
     int* cnt = dm.aux.data();
-    const std::size_t nl = static_cast<std::size_t>(Ops::exclusive_scan(cnt, cnt, dm.ntet));
+    const std::size_t nf = static_cast<std::size_t>(Ops::exclusive_scan(cnt, cnt, dm.ntet));
+    Buf<int> full;
+    full.resize_discard(nf);
+    if (nf) Ops::for_each(dm.ntet, ListBad{dm.view(), params.criteria, full.data(), static_cast<int>(nf)});
+    if (full.to_host() != changed)
+      throw Error(Status::InternalError, "gDP3d: the collect of changed tetrahedra listed " + std::to_string(nl) +
+                                             " elements, a full scan " + std::to_string(nf) + " (or in another order)");
+  }
+
+  std::size_t collect_changed() {
+    auto& dm = core.dm;
+    const m3d::TetView mv = dm.view();
+    const int from = collected_ntet, nnew = dm.ntet - from;
+    const std::size_t np = prev_tets.size(), nt = core.tuples.size();
+    const std::size_t nc = np + 5 * static_cast<std::size_t>(nnew) + nt;
+    cands.resize_discard(nc);
+    int* c = cands.data();
+    const int* pt = prev_tets.data();
+    const m3d::CavityTuple* tp = core.tuples.data();
+    Ops::for_each(np, [=] GDR_HD(long long k) { c[k] = pt[k]; });
+    Ops::for_each(nnew, [=] GDR_HD(long long k) {
+      const int t = from + static_cast<int>(k);
+      int* o = c + np + 5 * k;
+      o[0] = t;
+      for (int f = 0; f < 4; ++f) {
+        const int nb = mv.tn[4 * t + f];
+        o[1 + f] = nb < 0 ? -1 : nb >> 2;
+      }
+    });
+    Ops::for_each(nt, [=] GDR_HD(long long k) {
+      c[np + 5 * static_cast<std::size_t>(nnew) + k] = m3d::is_sub_tuple(tp[k]) ? -1 : tp[k].elem;
+    });
+    // Each tetrahedron once, at its first place (deterministic): first[t] holds the least
+    // place naming t during this collect, INT_MAX otherwise.
+    if (first.size() < static_cast<std::size_t>(dm.ntet)) {
+      const std::size_t old = first.size();
+      first.resize(dm.ntet);
+      int* fr = first.data();
+      Ops::for_each(dm.ntet - old, [=] GDR_HD(long long k) { fr[old + k] = INT_MAX; });
+    }
+    int* fr = first.data();
+    Ops::for_each(nc, [=] GDR_HD(long long k) {
+      if (c[k] >= 0) exec::atomic_min(&fr[c[k]], static_cast<int>(k));
+    });
+    Buf<int>& keep = cand_keep;
+    const std::size_t nk = exec::compact_indices<Space>(
+        nc, [=] GDR_HD(long long k) { return c[k] >= 0 && fr[c[k]] == static_cast<int>(k); }, keep, cand_scratch);
+    int* kp = keep.data();
+    Ops::for_each(nk, [=] GDR_HD(long long k) { kp[k] = c[kp[k]]; });
+    Ops::for_each(nk, [=] GDR_HD(long long k) { fr[kp[k]] = INT_MAX; });
+    // In the order of a full scan (by tetrahedron), so that the list and what follows from
+    // it (the shuffled priorities) are the same as the full scan's.
+    cand_keys.resize_discard(nk);
+    exec::u64* key = cand_keys.data();
+    Ops::for_each(nk, [=] GDR_HD(long long k) { key[k] = static_cast<exec::u64>(kp[k]); });
+    if (nk > 1) Ops::sort_pairs(key, kp, nk);
+    // As CountBad and ListBad, over the kept tetrahedra.
+    cand_scratch.resize_discard(nk);
+    int* cnt = cand_scratch.data();
+    const Criteria crit = params.criteria;
+    Ops::for_each(nk, [=] GDR_HD(long long k) {
+      const int mask = collect_mask(mv, crit, kp[k]);
+      int m = 0;
+      for (int b = 0; b < kSlots; ++b) m += (mask >> b) & 1;
+      cnt[k] = m;
+    });
+    const std::size_t nl = static_cast<std::size_t>(Ops::exclusive_scan(cnt, cnt, nk));
     core.list.resize_discard(nl);
-    if (nl)
-      Ops::for_each(dm.ntet, ListBad{dm.view(), params.criteria, core.list.data(), static_cast<int>(nl)});
-    core.clock.template stop<Space>("collect");
+    int* list = core.list.data();
+    Ops::for_each(nk, [=] GDR_HD(long long k) {
+      const int t = kp[k];
+      const int mask = collect_mask(mv, crit, t);
+      int o = cnt[k];
+      for (int b = 0; b < kSlots; ++b)
+        if (mask & (1 << b)) list[o++] = 16 * t + b;
+    });
     return nl;
   }
 

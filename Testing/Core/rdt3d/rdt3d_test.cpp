@@ -679,6 +679,28 @@ TEST_P(RestrictedDelaunayOnBackend, ThinWedgeTerminatesWithExceptions) {
 // surface pinches at the rim (314 facets at non-manifold edges and vertices on the CPU); with it,
 // the facets there are refined until the surface is a closed 2-manifold bounding the volume,
 // with tetrahedra and without. The count of non-manifold places agrees with the validator.
+// Most collects look only at the tetrahedra whose elements can have changed (those listed
+// last time, the new ones and their neighbours, the cavities'); with GDR_CHECK_COLLECT each
+// such list is compared with a full scan's (the same elements in the same order, or an
+// InternalError). A turned cube with features, and a thin part through its manifold rounds.
+TEST_P(RestrictedDelaunayOnBackend, CollectOfChangedTetrahedraMatchesAFullScan) {
+  setenv("GDR_CHECK_COLLECT", "1", 1);
+  const Rotation rot = turn(0.3, 0.7);
+  Surface cube = test::unit_cube();
+  for (Point3& p : cube.points) p = rot.apply(p);
+  RestrictedDelaunayOptions o = sizes(GetParam(), 0.1, 0.01, 0.1);
+  o.feature_angle = 30;
+  EXPECT_NO_THROW(expect_valid(restricted_delaunay_3d(cube, o, {}), cube, true, true));
+  Surface thin = test::icosphere(3);
+  for (Point3& p : thin.points) p.z *= 0.03;
+  RestrictedDelaunayOptions t;
+  t.backend = GetParam();
+  RestrictedDelaunayResult r;
+  EXPECT_NO_THROW(r = restricted_delaunay_3d(thin, t, {}));
+  EXPECT_GT(r.stats.manifold_splits, 0);
+  unsetenv("GDR_CHECK_COLLECT");
+}
+
 TEST_P(RestrictedDelaunayOnBackend, ThinPartIsRefinedToAManifold) {
   Surface s = test::icosphere(3);
   for (Point3& p : s.points) p.z *= 0.03;
