@@ -15,11 +15,13 @@
 // volume is below the floor: late in a run, points that only make as many bad elements as
 // they fix are a cascade (a turned CAD part's nearly planar cap, read as float32: the GPU,
 // inserting more per iteration, kept growing by a quarter per window to 2M tetrahedra where
-// the CPU stopped at 180k). Above the floor growth counts alone only until the mesh has
-// grown kBalloon-fold since the bad volume last reached a new low (by a fiftieth): a needle
-// spike 0.7 long on a torus 0.002 wide (fuzz3d seed 52002286) kept 15-20% of its volume bad
-// while the mesh grew past 1.3M tetrahedra (TetGen: 19k), growing by a quarter per window.
-// Host code, one per run.
+// the CPU stopped at 180k). With `balloon` (gQM3d without volume bounds), above the floor
+// growth counts alone only until the mesh has grown kBalloon-fold since the bad volume last
+// reached a new low (by a fiftieth): a needle spike 0.7 long on a torus 0.002 wide (fuzz3d
+// seed 52002286) kept 15-20% of its volume bad while the mesh grew past 1.3M tetrahedra
+// (TetGen: 19k), growing by a quarter per window. Not with a volume bound: there every
+// tetrahedron is bad until it is small, and the mesh grows a hundredfold before the bad
+// volume moves (a box at a volume bound of 1/2400 of it). Host code, one per run.
 #pragma once
 #include <algorithm>
 #include <cstddef>
@@ -29,8 +31,8 @@ namespace gdr::m3d {
 
 class StallDetector {
  public:
-  explicit StallDetector(bool turnover = false, double volume_floor = -1)
-      : turnover_(turnover), volume_floor_(volume_floor) {}
+  explicit StallDetector(bool turnover = false, double volume_floor = -1, bool balloon = false)
+      : turnover_(turnover), balloon_(balloon), volume_floor_(volume_floor) {}
 
   // Records one iteration: elements left to split, points in the mesh and the volume of the
   // bad tetrahedra (0 where not measured). Without a volume floor the volume counts as given;
@@ -39,7 +41,7 @@ class StallDetector {
     backlog_.push_back(backlog);
     points_.push_back(points);
     volume_.push_back(bad_volume);
-    if (volume_floor_ >= 0 && bad_volume > 0) {
+    if (balloon_ && bad_volume > 0) {
       if (best_volume_ < 0 || 50 * bad_volume < 49 * best_volume_) {
         best_volume_ = bad_volume;
         points_at_best_ = points;
@@ -73,9 +75,9 @@ class StallDetector {
  private:
   static constexpr std::size_t kWindow = 40, kSame = 6;
   static constexpr long long kBalloon = 8;
-  bool turnover_;
+  bool turnover_, balloon_;
   double volume_floor_;
-  double best_volume_ = -1;  // the lowest bad volume so far (with a floor), and the points then
+  double best_volume_ = -1;  // the lowest bad volume so far (with `balloon`), and the points then
   long long points_at_best_ = 0;
   std::vector<std::size_t> backlog_;
   std::vector<long long> points_;

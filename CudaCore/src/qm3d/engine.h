@@ -149,7 +149,8 @@ struct Engine {
     const std::size_t mem_base = exec::memory_counter<Space>().current;
     dm.upload(host);
     domain_volume = six_volume(dm.ntet, [] GDR_HD(int) { return true; });
-    stall = m3d::StallDetector(false, 0.05 * domain_volume);
+    stall = m3d::StallDetector(false, 0.05 * domain_volume,
+                               params.criteria.max_volume6 == 0 && params.criteria.region_bounds == 0);
     initial_points = dm.npts;
     counters.resize_discard(kCounters);
     counters.zero();

@@ -626,22 +626,26 @@ TEST(StallDetector, GrowthAloneIsNoProgressBelowTheVolumeFloor) {
   EXPECT_FALSE(d);
 }
 
-// Above the floor, growth with a bad volume that reaches no new low is progress only until
-// the mesh has grown eightfold (a needle spike on a thin torus kept 15-20% of its volume bad
-// while growing to 1.3M tetrahedra); with the volume reaching new lows it goes on.
+// Without volume bounds, above the floor, growth with a bad volume that reaches no new low
+// is progress only until the mesh has grown eightfold (a needle spike on a thin torus kept
+// 15-20% of its volume bad while growing to 1.3M tetrahedra); with the volume reaching new
+// lows it goes on, and with a volume bound (every tetrahedron bad until small) growth alone
+// is progress, as before.
 TEST(StallDetector, BallooningAboveTheFloorStalls) {
-  gdr::m3d::StallDetector balloon(false, 0.05), improving(false, 0.05);
+  gdr::m3d::StallDetector balloon(false, 0.05, true), improving(false, 0.05, true), sized(false, 0.05);
   int stalled_at = -1;
-  bool b = false;
+  bool b = false, c = false;
   for (int i = 0; i < 400; ++i) {
     const std::size_t backlog = 1000 + 20 * i;  // growing
     const long long points = static_cast<long long>(2500 * std::pow(1.01, i));
     if (stalled_at < 0 && balloon.stalled(backlog, points, 0.15 + 0.05 * ((i * 7) % 3))) stalled_at = i;
     b = b || improving.stalled(backlog, points, 0.5 * std::pow(0.995, i));
+    c = c || sized.stalled(backlog, points, 1.0);
   }
   EXPECT_GT(stalled_at, 200);  // 1.01^209 = 8
   EXPECT_LT(stalled_at, 215);
   EXPECT_FALSE(b);
+  EXPECT_FALSE(c);
 }
 
 // gDP3d's end game (turnover): a few elements left that change as 3 points per iteration go
