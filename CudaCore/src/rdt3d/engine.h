@@ -260,11 +260,12 @@ struct Engine {
   // the new ones and their neighbours (whose shared facet a new tetrahedron classified), and
   // the cavities' (where refusals mark facets and edges to split). Other kernels mark
   // elements elsewhere now and then (a walk's exit face); a full scan every kFullEvery
-  // iterations, and before refinement ends, picks those up. Full scans were a fifth of the
-  // refinement of a 350k-tetrahedron slab on two CPU threads (700 iterations).
+  // iterations, and before refinement ends, picks those up. Full scans were a third of the
+  // refinement of a 650k-tetrahedron slab on one CPU thread (1,416 iterations). On the GPU a
+  // full scan is a few tenths of a millisecond: it keeps them.
   std::size_t collect(bool force_full = false) {
     auto& dm = core.dm;
-    const bool full = force_full || collected_ntet < 0 || ++since_full >= kFullEvery ||
+    const bool full = Ops::is_gpu || force_full || collected_ntet < 0 || ++since_full >= kFullEvery ||
                       prev_tets.size() > static_cast<std::size_t>(dm.ntet) / 8;
     std::size_t nl;
     if (full) {
@@ -281,6 +282,10 @@ struct Engine {
     }
     last_collect_full = full;
     collected_ntet = dm.ntet;
+    if (Ops::is_gpu) {
+      core.clock.template stop<Space>("collect");
+      return nl;
+    }
     // The listed tetrahedra, for the next collect (the list itself is scratch until then).
     const int* l = core.list.data();
     const std::size_t n = nl;
