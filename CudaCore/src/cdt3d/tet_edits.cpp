@@ -39,15 +39,17 @@ void remove_tets(HostTetMesh& m, const std::vector<char>& dead) {
   for (int& x : m.st) x = map_face(x);
 }
 
-// Tetrahedra of zero volume (exact orient3d) on the domain's boundary: with "c", TetGen
-// triangulates the convex hull and glues a flat tetrahedron between a hull face pair and
-// the input's two triangles of the same coplanar quadrilateral when they use the other
-// diagonal (a turned box: its faces' corners are exactly coplanar), and classifies it
-// inside. Such a tetrahedron has two faces on the boundary (subfaces of one facet, nothing
-// beyond) and two towards the domain; it is dropped and its two inner faces become the
-// facet's subfaces instead (the validators let coplanar input triangles be retriangulated;
-// TetGen's diagonal is the Delaunay one). Unless the diagonal it drops is a segment.
-// Returns how many were dropped; other flat tetrahedra stay (refinement splits them).
+// Tetrahedra of zero or negative volume (exact orient3d) on the domain's boundary: with "c",
+// TetGen triangulates the convex hull and glues a flat tetrahedron between a hull face pair
+// and the input's two triangles of the same (nearly) coplanar quadrilateral when they use the
+// other diagonal, and classifies it inside: exactly flat on a turned box whose faces' corners
+// are coplanar, inverted by a rounding where TetGen merged a face that bends inward within its
+// 0.1 degrees (a turned box of two bodies meshed one by one, fuzz3d seed 56003176). Such a
+// tetrahedron has two faces on the boundary (subfaces of one facet, nothing beyond) and two
+// towards the domain; it is dropped and its two inner faces become the facet's subfaces
+// instead (the validators let coplanar input triangles be retriangulated, and a bend of
+// rounding size is within their tolerance; TetGen's diagonal is the Delaunay one). Unless the
+// diagonal it drops is a segment. Returns how many were dropped; other such tetrahedra stay.
 int drop_flat_boundary_tets(const Plc& plc, HostTetMesh& m) {
   const int nt = m.tets();
   std::vector<int> flat;
@@ -55,7 +57,7 @@ int drop_flat_boundary_tets(const Plc& plc, HostTetMesh& m) {
   for (int t = 0; t < nt; ++t) {
     const double* p[4];
     for (int k = 0; k < 4; ++k) p[k] = &m.xyz[3 * static_cast<std::size_t>(m.tv[4 * t + k])];
-    if (pred::orient3d(p[0], p[1], p[2], p[3]) == 0) {
+    if (!(pred::orient3d(p[0], p[1], p[2], p[3]) > 0)) {
 #pragma omp critical(gdr_cdt_flat)
       flat.push_back(t);
     }

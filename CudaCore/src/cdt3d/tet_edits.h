@@ -7,9 +7,9 @@
 
 namespace gdr::cdt3d {
 
-// Tetrahedra of zero volume (exact orient3d) with two faces on the boundary, subfaces of one
-// facet, and two towards the domain: dropped, their inner faces becoming the facet's
-// subfaces (see the .cpp). Returns how many.
+// Tetrahedra of zero or negative volume (exact orient3d) with two faces on the boundary,
+// subfaces of one facet, and two towards the domain: dropped, their inner faces becoming the
+// facet's subfaces (see the .cpp). Returns how many.
 int drop_flat_boundary_tets(const Plc& plc, m3d::HostTetMesh& m);
 
 // Removes the tetrahedra marked in `dead` and renumbers every link to the others.
