@@ -546,7 +546,6 @@ std::string close_parts(const Plc& plc) {
          list_items(items, count);
 }
 
-
 constexpr const char* kOtherMesher =
     ". The restricted Delaunay mesher (gdr rdt; GPU Restricted Delaunay 3D in ParaView) meshes such "
     "surfaces without TetGen, approximating them";

@@ -299,7 +299,7 @@ struct Engine {
   }
 
   // Debugging and tests (GDR_CHECK_COLLECT): the list of the last collect_changed against a
-  // full scan's; an element it missed is an InternalError naming it.
+  // full scan's: an InternalError where they differ (an element missed, or out of order).
   void compare_with_full_scan(std::size_t nl) {
     auto& dm = core.dm;
     const std::vector<int> changed = core.list.to_host();
