@@ -361,26 +361,15 @@ struct Engine {
     exec::u64* key = cand_keys.data();
     Ops::for_each(nk, [=] GDR_HD(long long k) { key[k] = static_cast<exec::u64>(kp[k]); });
     if (nk > 1) Ops::sort_pairs(key, kp, nk);
-    // As CountBad and ListBad, over the kept tetrahedra.
+    // CountBad and ListBad over the kept tetrahedra.
     cand_scratch.resize_discard(nk);
     int* cnt = cand_scratch.data();
     const Criteria crit = params.criteria;
-    Ops::for_each(nk, [=] GDR_HD(long long k) {
-      const int mask = collect_mask(mv, crit, kp[k]);
-      int m = 0;
-      for (int b = 0; b < kSlots; ++b) m += (mask >> b) & 1;
-      cnt[k] = m;
-    });
+    Ops::for_each(nk, [=] GDR_HD(long long k) { cnt[k] = mask_entries(collect_mask(mv, crit, kp[k])); });
     const std::size_t nl = static_cast<std::size_t>(Ops::exclusive_scan(cnt, cnt, nk));
     core.list.resize_discard(nl);
     int* list = core.list.data();
-    Ops::for_each(nk, [=] GDR_HD(long long k) {
-      const int t = kp[k];
-      const int mask = collect_mask(mv, crit, t);
-      int o = cnt[k];
-      for (int b = 0; b < kSlots; ++b)
-        if (mask & (1 << b)) list[o++] = 16 * t + b;
-    });
+    Ops::for_each(nk, [=] GDR_HD(long long k) { list_entries(collect_mask(mv, crit, kp[k]), kp[k], list + cnt[k]); });
     return nl;
   }
 

@@ -454,15 +454,21 @@ GDR_HD_INLINE int collect_mask(const TetView& m, const Criteria& c, int t) {
   return mask;
 }
 
+// A collect mask's entries: their number, and the entries themselves (16 t + slot) from `out`.
+GDR_HD_INLINE int mask_entries(int mask) {
+  int n = 0;
+  for (int k = 0; k < kSlots; ++k) n += (mask >> k) & 1;
+  return n;
+}
+GDR_HD_INLINE void list_entries(int mask, int t, int* out) {
+  for (int k = 0; k < kSlots; ++k)
+    if (mask & (1 << k)) *out++ = 16 * t + k;
+}
+
 struct CountBad {
   TetView m;
   Criteria c;
-  GDR_HD void operator()(long long i) const {
-    const int mask = collect_mask(m, c, static_cast<int>(i));
-    int n = 0;
-    for (int k = 0; k < kSlots; ++k) n += (mask >> k) & 1;
-    m.aux[i] = n;
-  }
+  GDR_HD void operator()(long long i) const { m.aux[i] = mask_entries(collect_mask(m, c, static_cast<int>(i))); }
 };
 
 struct ListBad {
@@ -474,10 +480,7 @@ struct ListBad {
     const int t = static_cast<int>(i);
     const int next = t + 1 < m.ntet ? m.aux[t + 1] : total;
     if (next == m.aux[t]) return;  // nothing listed here (the scan did not step)
-    const int mask = collect_mask(m, c, t);
-    int o = m.aux[t];
-    for (int k = 0; k < kSlots; ++k)
-      if (mask & (1 << k)) list[o++] = 16 * t + k;
+    list_entries(collect_mask(m, c, t), t, list + m.aux[t]);
   }
 };
 
