@@ -698,6 +698,8 @@ TEST_P(RestrictedDelaunayOnBackend, CollectOfChangedTetrahedraMatchesAFullScan) 
   RestrictedDelaunayResult r;
   EXPECT_NO_THROW(r = restricted_delaunay_3d(thin, t, {}));
   EXPECT_GT(r.stats.manifold_splits, 0);
+  EXPECT_EQ(r.stats.non_manifold_facets, 0);
+  expect_valid(r, thin, true, true);
   unsetenv("GDR_CHECK_COLLECT");
 }
 
