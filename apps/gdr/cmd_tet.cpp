@@ -297,6 +297,7 @@ void write_stats_json(const std::string& path, const ArgsTet& a, const QualityTe
   j.field("steiner_cap_reached", s.steiner_cap_reached);
   j.field("stalled", s.stalled);
   j.field("blocked_segments", s.blocked_segments);
+  j.field("sleeping_points", s.sleeping_points);
   j.field("min_dihedral_deg", s.min_dihedral_deg);
   j.field("max_dihedral_deg", s.max_dihedral_deg);
   j.field("slivers_before", s.slivers_before);

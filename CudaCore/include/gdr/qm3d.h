@@ -89,6 +89,9 @@ struct QualityTetStats {
   // Input segments left unsplit after their splits failed again and again (a nearly
   // coplanar facet next to them): what would encroach them is left bad (protected_bad_tets).
   long long blocked_segments = 0;
+  // Points that failed for reasons of their own and slept until their cavity changed,
+  // instead of failing again every iteration (summed over the iterations).
+  long long sleeping_points = 0;
   double min_dihedral_deg = 0, max_dihedral_deg = 0;
   double max_radius_edge = 0;
   // Sliver removal (sliver_angle > 0): tetrahedra with an angle beyond it before and after,

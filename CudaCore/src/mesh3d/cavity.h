@@ -24,7 +24,8 @@ using exec::u64;
 // What a point splits. kSegmentSplit: the subsegment (a, b), which is edge ek of tetrahedron
 // `start`; kFacetSplit: subface `sub` (face ek of `start`), p lies in it; kFreePoint: p lies
 // in tetrahedron `start`.
-enum : signed char { kDropped = -1, kSegmentSplit = 0, kFacetSplit = 1, kFreeSplit = 2 };
+// kSleeping: a subsegment whose split sleeps (qm3d/engine.h) but counts as failing again.
+enum : signed char { kSleeping = -2, kDropped = -1, kSegmentSplit = 0, kFacetSplit = 1, kFreeSplit = 2 };
 // Candidate::ek of a free point: a circumcentre asked for by a tetrahedron's shape
 // (kShapePoint: refused in the protecting balls of sharp features), by its size
 // (kSizePoint), or to make room for a split on a segment or facet whose cavity was not
@@ -41,8 +42,10 @@ struct Candidate {
   int sub;
   int a, b;
   int origin;  // the bad tetrahedron this point would fix, or -1
+  int elem;    // the listed element that asked for it (qm3d: t * 16 + slot, for sleeping)
   signed char kind;
   signed char ek;
+  signed char room;  // qm3d: its tetrahedron had asked for room (kMakeRoom) when it was made
 };
 
 // Why a point was not inserted this iteration (its `failed` word; 0: inserted).

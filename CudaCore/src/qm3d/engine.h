@@ -42,6 +42,7 @@ struct Strategies {
   bool acute_vertices = true;  // protecting balls at acute vertices too (qm3d/features.h)
   bool segment_presplit = true;  // segments that would wait on each other split before the CDT
   bool flips = true;             // the sliver pass flips the slivers it cannot smooth (mesh3d/flip.h)
+  bool sleeping = true;          // points that failed for reasons of their own wait for a change
 };
 
 struct EngineParams {
@@ -67,6 +68,7 @@ struct EngineResult {
   bool cap_reached = false;
   bool stalled = false;
   long long blocked_segments = 0;  // input segments left unsplit after repeated failures
+  long long slept = 0;             // points that fell asleep (Engine::sleep_failed)
   m3d::SmoothResult slivers;
   std::size_t peak_bytes = 0;
   std::vector<PhaseTime> phases;
@@ -111,6 +113,16 @@ struct Engine {
   Buf<Tuple> tuples;
   Buf<double> work_volume;             // six_volume's scratch
   Buf<int> segment_failures;           // per input segment: splits without a star (blocking)
+  // Sleeping (sleep_failed): per tetrahedron, its listed elements that sleep (kernels.h
+  // asleep); per sleeping element, the elements of its last cavity, watched for changes.
+  struct Watch {
+    int elem;   // the sleeping element, t * 16 + slot
+    int what;   // a tetrahedron of its cavity, or ~s for a subface s of it
+    int since;  // the iteration it fell asleep
+  };
+  Buf<int> sleep;
+  Buf<Watch> watch;
+  bool slivers_held = false;  // sliver_split_ratio2 in force (compute_splitting_points)
   double domain_volume = 0, bad_volume = 0;  // six times: all tetrahedra at the start, the bad ones now
   long long initial_points = 0;               // in the mesh given to refine
   bool allow_deferment = true;
@@ -165,21 +177,26 @@ struct Engine {
       const std::size_t nl = collect(iter == 0 && params.check_input_boundary);  // line 4
       if (nl == 0) break;                               // line 10
       res.iterations = iter + 1;
+      if (idle >= 2 && !idle_twice) wake_all();  // their points are made another way now
       idle_twice = idle >= 2;
       compute_splitting_points(nl, iter);               // line 6
+      if (params.strategies.blocking) count_segment_failures(cand_all.data(), nullptr, nl);
       const std::size_t ns = filter(nl);                // line 7 (S1, S3)
       grow_cavities(ns);                                // line 8 (S2, S3, S5)
       check_abort();  // an iteration of millions of points takes seconds on a few CPU threads
       const long long won = verify_and_number(ns);
-      if (params.strategies.blocking) block_failing_segments(ns);
+      if (params.strategies.blocking) count_segment_failures(cand.data(), failed.data(), ns);
       stagnant = !stagnant && won * 50 < static_cast<long long>(ns);
       adjust_crowding(ns, won);
       if (won > 0) {
-        insert(ns, won);                                // line 9
+        insert(ns, won, iter);                          // line 9
         idle = 0;
-      } else if (++idle >= 8) {
-        res.stalled = true;
-        break;
+      } else {
+        sleep_failed(ns, iter, false);
+        if (++idle >= 8) {
+          res.stalled = true;
+          break;
+        }
       }
       // The bad volume counts as progress on its own only while it is a large share of the
       // domain (the interior still empty), not in a cascade of ever smaller bad tetrahedra
@@ -205,9 +222,9 @@ struct Engine {
         std::fprintf(stderr, "gdr-trace phases ms:%s\n", phase_ms.c_str());
         std::fprintf(stderr,
                      "gdr-trace iter %d: ms %.2f, tets %d, subfaces %d, points %d, elements %zu, bad volume %.3g%%, "
-                     "candidates %zu, won %lld, rounds %d, tuples %zu, MB %.1f (peak %.1f), "
+                     "candidates %zu, won %lld, rounds %d, tuples %zu, watched %zu, MB %.1f (peak %.1f), "
                      "lost/encroach/touch/star/defer/cap/delaunay %s\n",
-                     iter + 1, ms, dm.ntet, dm.nsub, dm.npts, nl, 100 * bad_volume / domain_volume, ns, won, rounds, tuples.size(),
+                     iter + 1, ms, dm.ntet, dm.nsub, dm.npts, nl, 100 * bad_volume / domain_volume, ns, won, rounds, tuples.size(), watch.size(),
                      exec::memory_counter<Space>().current / 1048576.0,
                      exec::memory_counter<Space>().peak / 1048576.0, failure_counts().c_str());
       }
@@ -316,7 +333,7 @@ struct Engine {
     int* cnt = dm.aux.data();
     const std::size_t nl = static_cast<std::size_t>(Ops::exclusive_scan(cnt, cnt, dm.ntet));
     list.resize_discard(nl);
-    if (nl) Ops::for_each(dm.ntet, ExpandElements{dm.view(), list.data()});
+    if (nl) Ops::for_each(dm.ntet, ExpandElements{dm.view(), list.data(), static_cast<int>(nl)});
     // The bad tetrahedra's volume, for the stall detector.
     const int* l = list.data();
     bad_volume = six_volume(static_cast<int>(nl), [=] GDR_HD(int j) { return (l[j] & 15) == kSlotTet; }, l);
@@ -351,12 +368,20 @@ struct Engine {
     // their circumradius is at least their shortest edge, so insertion radii stop shrinking
     // (spot: 22k points, 2.6% bad, 0.45 s on 2 CPU threads); the others are left and counted.
     Criteria crit = params.criteria;
-    if (crit.dihedral && dm.npts > 4LL * initial_points) crit.sliver_split_ratio2 = 1.0;
+    if (crit.dihedral && dm.npts > 4LL * initial_points) {
+      crit.sliver_split_ratio2 = 1.0;
+      if (!slivers_held) wake_all();
+      slivers_held = true;
+    }
+    if (sleep.size() != static_cast<std::size_t>(dm.ntet)) {  // the first iteration
+      sleep.resize_discard(dm.ntet);
+      sleep.zero();
+    }
     Ops::for_each(nl, ComputeSplittingPoints{dm.view(), crit, list.data(), cand_all.data(),
                                              0x9e3779b9u * static_cast<unsigned>(iter + 1),
                                              params.strategies.worst_first, stagnant, keep_below,
                                              segment_failures.size() == dm.sharp.size() ? segment_failures.data() : nullptr,
-                                             idle_twice});
+                                             idle_twice, params.strategies.sleeping ? sleep.data() : nullptr});
     clock.template stop<Space>("split+locate");
   }
 
@@ -560,8 +585,10 @@ struct Engine {
   // points after its bad volume had stopped falling. After kBlockAfter such failures the
   // segment is treated as sharp (mesh3d.h is_sharp_subseg): it is split no more, and what
   // would encroach it gives up (a protected, reported tetrahedron; a subface left as it is).
+  // The candidates cs[0..n) that failed so: with `fl`, those whose failure fl[j] is one of
+  // these; without, the sleeping ones that would have (kSleeping).
   static constexpr int kBlockAfter = 8;
-  void block_failing_segments(std::size_t ns) {
+  void count_segment_failures(const Candidate* cs, const int* fl, std::size_t n) {
     const std::size_t nseg = dm.sharp.size();
     if (nseg == 0) return;
     if (segment_failures.size() != nseg) {
@@ -569,13 +596,13 @@ struct Engine {
       segment_failures.zero();
     }
     const m3d::TetView mv = dm.view();
-    const Candidate* cs = cand.data();
-    const int* fl = failed.data();
     int* nf = segment_failures.data();
     std::uint8_t* sharp = dm.sharp.data();
     int* blocked = counters.data() + kBlocked;
-    Ops::for_each(ns, [=] GDR_HD(long long j) {
-      if (cs[j].kind != m3d::kSegmentSplit || (fl[j] != m3d::kFailStar && fl[j] != m3d::kFailDelaunay)) return;
+    Ops::for_each(n, [=] GDR_HD(long long j) {
+      if (fl ? cs[j].kind != m3d::kSegmentSplit || (fl[j] != m3d::kFailStar && fl[j] != m3d::kFailDelaunay)
+             : cs[j].kind != m3d::kSleeping)
+        return;
       const int g = m3d::segment_of(mv, cs[j].a, cs[j].b);
       if (g < 0) return;
       // Counted for every segment: one that keeps failing waits behind the others (its
@@ -591,7 +618,8 @@ struct Engine {
   // Line 9: remesh each winning cavity (section 6.5) as a fan of new tetrahedra from its
   // point, and each split subface cavity as a fan of new subfaces; then compact (S1) once a
   // tenth of the elements are dead.
-  void insert(std::size_t ns, long long won) {
+  // `iter` < 0 (gDP3d's driver, whose points have no listed elements): no sleeping.
+  void insert(std::size_t ns, long long won, int iter = -1) {
     const std::size_t nt = tuples.size();
     // Faces are numbered 4t + f in 32 bits (tn): a mesh that could pass INT_MAX / 4
     // tetrahedra (about 537 million; an H200 holds that many) stops with an error before any
@@ -648,12 +676,111 @@ struct Engine {
     dead_tets += host_ctr[kKilledTets];
     dead_subs += host_ctr[kKilledSubs];
     clock.template stop<Space>("insert");
+    sleep_failed(ns, iter, true);
     if (params.strategies.compaction && (10 * dead_tets > dm.ntet || 10 * dead_subs > dm.nsub)) {
       m3d::compact(dm);
       dead_tets = dead_subs = 0;
       fresh_from = 0;
+      wake_all();  // the tetrahedra are numbered anew
     }
     clock.template stop<Space>("compact");
+  }
+
+  // Sleeping (ours): in the end game of a scanned surface most points fail for reasons of
+  // their own (no star, a new tetrahedron not Delaunay, a subsegment encroached) in
+  // neighbourhoods that no other point changes, and grew the same cavity to fail again
+  // every iteration (boat, B = 1.4: hundreds of iterations of a few hundred such points and
+  // a few insertions each). Such a point's element sleeps: it is listed, and counted, but
+  // makes no point until an insertion kills a tetrahedron of that cavity or gives one of them
+  // a new neighbour (then the same walk and growth could end elsewhere), or kSleepMost
+  // iterations have passed (what decides a failure reaches a little beyond the cavity: a
+  // walk across a facet, a claim another point held). After this iteration's insertion
+  // (`inserted`: the new tetrahedra are those from fresh_from on).
+  static constexpr int kSleepMost = 16;
+  void sleep_failed(std::size_t ns, int iter, bool inserted) {
+    if (!params.strategies.sleeping || iter < 0) return;
+    clock.restart();
+    const std::size_t old_size = sleep.size();
+    if (old_size < static_cast<std::size_t>(dm.ntet)) {
+      sleep.resize(dm.ntet);
+      int* sl = sleep.data();
+      Ops::for_each(dm.ntet - old_size, [=] GDR_HD(long long i) { sl[old_size + i] = 0; });
+    }
+    const m3d::TetView mv = dm.view();
+    const Candidate* cs = cand.data();
+    const int* fl = failed.data();
+    int* sl = sleep.data();
+    // The points that fall asleep: failed for a reason of their own, their element alive
+    // and its request for room what it was when the point was made.
+    count2.resize_discard(ns);
+    int* falls = count2.data();
+    Ops::for_each(ns, [=] GDR_HD(long long j) {
+      const int f = fl[j], e = cs[j].elem;
+      falls[j] = 0;
+      if ((f != m3d::kFailStar && f != m3d::kFailDelaunay && f != m3d::kFailEncroach) || e < 0) return;
+      const int t = e >> 4, slot = e & 15;
+      const bool room = (mv.tflag[t] & m3d::kMakeRoom) != 0;
+      if ((mv.tflag[t] & m3d::kDead) || room != (cs[j].room != 0)) return;
+      int w = 1 << slot;
+      if (slot >= kSlotEdge0 && f != m3d::kFailEncroach) w |= 1 << (kSlots + slot - kSlotEdge0);
+      if (slot == kSlotTet && room) w |= kSleptRoom;
+      exec::atomic_or(&sl[t], w);
+      falls[j] = 1;
+    });
+    // Their cavities' elements are watched, and their own tetrahedra (a cavity may be empty).
+    const Tuple* tp = tuples.data();
+    const std::size_t nt = tuples.size();
+    const std::size_t nw = exec::compact_indices<Space>(
+        nt, [=] GDR_HD(long long i) { return m3d::result_of(tp[i]) == m3d::kCavity && falls[tp[i].pt]; }, list, count);
+    const std::size_t nown = exec::compact_indices<Space>(ns, [=] GDR_HD(long long j) { return falls[j] != 0; }, point_id, count);
+    res.slept += static_cast<long long>(nown);
+    const std::size_t before = watch.size();
+    watch.resize(before + nw + nown);
+    Watch* wt = watch.data();
+    const int* sel = list.data();
+    Ops::for_each(nw, [=] GDR_HD(long long k) {
+      const Tuple& h = tp[sel[k]];
+      wt[before + k] = Watch{cs[h.pt].elem, m3d::is_sub_tuple(h) ? ~h.elem : h.elem, iter};
+    });
+    const int* own = point_id.data();
+    Ops::for_each(nown, [=] GDR_HD(long long k) {
+      const int e = cs[own[k]].elem;
+      wt[before + nw + k] = Watch{e, e >> 4, iter};
+    });
+    // Wake the sleepers whose cavity changed in this insertion, or that slept long enough.
+    const int fresh = inserted ? fresh_from : dm.ntet;
+    const auto changed = [=] GDR_HD(int t) {  // t < 0: no tetrahedron on that side
+      if (t < 0) return false;
+      if (mv.tflag[t] & m3d::kDead) return true;
+      for (int f = 0; f < 4; ++f)
+        if (mv.tn[4 * t + f] >= 0 && (mv.tn[4 * t + f] >> 2) >= fresh) return true;
+      return false;
+    };
+    Ops::for_each(watch.size(), [=] GDR_HD(long long i) {
+      const Watch w = wt[i];
+      const int t = w.elem >> 4, slot = w.elem & 15;
+      if (!(sl[t] & (1 << slot))) return;
+      bool wake = iter - w.since >= kSleepMost;
+      if (!wake && w.what >= 0) wake = changed(w.what);
+      if (!wake && w.what < 0) {
+        const int s = ~w.what;
+        wake = (mv.sflag[s] & m3d::kSubDead) || changed(mv.st[2 * s] >> 2) || changed(mv.st[2 * s + 1] >> 2);
+      }
+      if (!wake) return;
+      int bits = 1 << slot;
+      if (slot >= kSlotEdge0) bits |= 1 << (kSlots + slot - kSlotEdge0);
+      if (slot == kSlotTet) bits |= kSleptRoom;
+      exec::atomic_and(&sl[t], ~bits);
+    });
+    exec::keep_if(watch, [=] GDR_HD(const Watch& w) { return (sl[w.elem >> 4] & (1 << (w.elem & 15))) != 0; }, count);
+    count.release();
+    count2.release();
+    clock.template stop<Space>("sleep");
+  }
+
+  void wake_all() {
+    sleep.zero();
+    watch.resize_discard(0);
   }
 
   // The final mesh, live elements only, with its subsegments (each once, from the least

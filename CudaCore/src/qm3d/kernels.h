@@ -186,9 +186,11 @@ GDR_HD_INLINE int collect_mask(const TetView& m, int t) {
 }
 
 GDR_HD_INLINE int popcount11(int x) {
-  int n = 0;
-  for (int k = 0; k < kSlots; ++k) n += (x >> k) & 1;
-  return n;
+#ifdef __CUDA_ARCH__
+  return __popc(x & ((1 << kSlots) - 1));
+#else
+  return __builtin_popcount(static_cast<unsigned>(x & ((1 << kSlots) - 1)));
+#endif
 }
 
 // The mask's entry count goes to aux, which the engine scans in place into list offsets.
@@ -207,14 +209,17 @@ struct CollectMask {
   }
 };
 
-// Expands the masks into the element list (t*16 + slot) at the scanned offsets.
+// Expands the masks into the element list (t*16 + slot) at the scanned offsets (a
+// tetrahedron with no entries, most of them, is passed over on its offsets alone).
 struct ExpandElements {
   TetView m;
   int* list;
+  int total;  // the list's length
   GDR_HD void operator()(long long i) const {
     const int t = static_cast<int>(i);
-    const int mask = collect_mask(m, t);
     int o = m.aux[t];
+    if ((t + 1 < m.ntet ? m.aux[t + 1] : total) == o) return;
+    const int mask = collect_mask(m, t);
     for (int k = 0; k < kSlots; ++k)
       if (mask & (1 << k)) list[o++] = 16 * t + k;
   }
@@ -368,6 +373,19 @@ GDR_HD_INLINE void make_subface_candidate(const TetView& m, int s, unsigned id, 
   }
 }
 
+// Sleeping elements (engine.h, Engine::sleep_failed): per tetrahedron, bit slot for each
+// listed element whose last point failed for a reason of its own, bit kSlots + e for a
+// subsegment (edge e) whose failure counts towards blocking it, and kSleptRoom when a
+// tetrahedron's point was made while it asked for room. An element sleeps while its
+// tetrahedron's request for room is what it was.
+enum : int { kSleptRoom = 1 << (kSlots + 6) };
+
+GDR_HD_INLINE bool asleep(const TetView& m, const int* sleep, int e) {
+  const int t = e >> 4, slot = e & 15, w = sleep[t];
+  if (!(w & (1 << slot))) return false;
+  return slot != kSlotTet || ((m.tflag[t] & m3d::kMakeRoom) != 0) == ((w & kSleptRoom) != 0);
+}
+
 struct ComputeSplittingPoints {
   TetView m;
   Criteria c;
@@ -385,9 +403,22 @@ struct ComputeSplittingPoints {
   // only once no point has gone in for two iterations: on a scan (penguin, B = 2) it gave 5%
   // more tetrahedra and 40% more bad ones.
   bool centroid_room = false;
+  const int* sleep = nullptr;  // per tetrahedron, its sleeping elements (engine.h); null: none
   GDR_HD void operator()(long long j) const {
+    const int e = list[j];
+    out[j].elem = e;
+    out[j].room = (m.tflag[e >> 4] & m3d::kMakeRoom) != 0;
     if (shuffle_id(static_cast<unsigned>(j), salt) >= keep_below) {
       out[j].kind = m3d::kDropped;
+      return;
+    }
+    if (sleep && asleep(m, sleep, e)) {
+      // It would fail as before; a subsegment's split still counts as failing (blocking).
+      out[j].kind = m3d::kDropped;
+      if ((e & 15) >= kSlotEdge0 && (sleep[e >> 4] & (1 << (kSlots + (e & 15) - kSlotEdge0)))) {
+        make_segment_candidate(m, e >> 4, (e & 15) - kSlotEdge0, 0, out[j]);
+        if (out[j].kind == m3d::kSegmentSplit) out[j].kind = m3d::kSleeping;
+      }
       return;
     }
     compute(j);

@@ -121,7 +121,7 @@ double bad_volume_share(const qm3d::MeshResult& out) {
 namespace qm3d {
 
 // Design strategies switched off for a measurement: GDR_DISABLE=s1,s3,s5,touching,
-// block_rounds,grid_rounds,worst_first,crowding,seeds,blocking,acute,presplit (benchmarks only; see
+// block_rounds,grid_rounds,worst_first,crowding,seeds,blocking,acute,presplit,flips,sleeping (benchmarks only; see
 // Benchmarks/README.md).
 // Both 3D meshers read it.
 Strategies strategies_from_environment() {
@@ -141,10 +141,11 @@ Strategies strategies_from_environment() {
         else if (name == "acute") s.acute_vertices = false;
         else if (name == "presplit") s.segment_presplit = false;
         else if (name == "flips") s.flips = false;
+        else if (name == "sleeping") s.sleeping = false;
         else return name == "s4";  // 2D only: the 3D engine always lists all three kinds together
         return true;
       },
-      "s1, s3, s5, touching, block_rounds, grid_rounds, worst_first, crowding, seeds, blocking, acute, presplit, flips");
+      "s1, s3, s5, touching, block_rounds, grid_rounds, worst_first, crowding, seeds, blocking, acute, presplit, flips, sleeping");
   return s;
 }
 
@@ -335,6 +336,7 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
     st.steiner_cap_reached = er.cap_reached;
     st.stalled = er.stalled;
     st.blocked_segments = er.blocked_segments;
+    st.sleeping_points = er.slept;
     st.phases = er.phases;
     if (st.backend_used == Backend::Cpu) st.device_name = cpu_device_name(threads.most());
     st.slivers_before = er.slivers.slivers_before;
