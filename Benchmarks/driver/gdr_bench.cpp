@@ -315,7 +315,7 @@ void usage() {
          "  --only: run only cases whose name contains SUBSTRING\n"
          "  --check: put a generated surface through the mesher's surface checks and its CDT\n"
          "  SPEC: gen:contours:segments=N:seed=S[:amplitude=A] (2D, writes .poly)\n"
-         "        gen:surface:base=FILE:subdiv=K, gen:torus:triangles=N[:bump=A] (3D, writes .off)\n";
+         "        gen:surface:base=FILE:subdiv=K[:turn=1][:noise=S], gen:torus:triangles=N[:bump=A] (3D, writes .off)\n";
 }
 
 }  // namespace

@@ -1,8 +1,12 @@
 // Generated closed surfaces for the 3D benchmarks, so that no large file is committed:
-//   gen:surface:base=FILE:subdiv=K[:turn=1]   midpoint subdivision of a closed surface, K
-//                                    times; turn=1 then turns it (0.7 rad about z, 0.4 about
-//                                    x) and rounds it to single precision, as a CAD part
-//                                    exported to binary STL at an angle is
+//   gen:surface:base=FILE:subdiv=K[:turn=1][:noise=S[:seed=N]]
+//                                    midpoint subdivision of a closed surface, K times;
+//                                    turn=1 then turns it (0.7 rad about z, 0.4 about x) and
+//                                    rounds it to single precision, as a CAD part exported to
+//                                    binary STL at an angle is; noise=S moves every point
+//                                    along its normal by S mean edge lengths times a normal
+//                                    deviate (seed N, default 1), as a raw scan's noise: its
+//                                    triangles no longer meet nearly flat
 //   gen:torus:triangles=N:bump=A     a bumpy torus of about N triangles
 // Both are checked by the mesher's own surface checks when a case runs (an invalid surface
 // is an error of that case, before anything is timed).
@@ -11,6 +15,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <random>
 #include <sstream>
 #include <unordered_map>
 
@@ -47,6 +52,37 @@ double spec_number(const std::map<std::string, std::string>& parts, const std::s
   if (it->second.empty() || *end != '\0')
     throw gdr::Error(gdr::Status::InvalidInput, "'" + spec + "': " + key + " is not a number");
   return v;
+}
+
+// Scanner-like noise (gen:surface's noise=S): each point moves along its area-weighted
+// normal by `scale` mean edge lengths times a standard normal deviate (Box-Muller on
+// mt19937, the same numbers with every standard library).
+void add_normal_noise(gdr::Surface& s, double scale, unsigned seed) {
+  std::vector<gdr::Point3> normal(s.points.size(), gdr::Point3{0, 0, 0});
+  double edges = 0;
+  for (const auto& t : s.triangles) {
+    const gdr::Point3 &a = s.points[t[0]], &b = s.points[t[1]], &c = s.points[t[2]];
+    const double u[3] = {b.x - a.x, b.y - a.y, b.z - a.z}, v[3] = {c.x - a.x, c.y - a.y, c.z - a.z};
+    const gdr::Point3 n{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    for (int k = 0; k < 3; ++k) {
+      normal[t[k]].x += n.x;
+      normal[t[k]].y += n.y;
+      normal[t[k]].z += n.z;
+    }
+    edges += std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+  }
+  const double step = scale * edges / std::max<std::size_t>(1, s.triangles.size());
+  std::mt19937 rng(seed);
+  const double two_pi = 6.283185307179586;
+  for (std::size_t i = 0; i < s.points.size(); ++i) {
+    const double u1 = (rng() + 1.0) / 4294967297.0, u2 = rng() / 4294967296.0;
+    const double g = std::sqrt(-2 * std::log(u1)) * std::cos(two_pi * u2);
+    const gdr::Point3& n = normal[i];
+    const double len = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
+    if (len == 0) continue;
+    const double d = step * g / len;
+    s.points[i] = {s.points[i].x + d * n.x, s.points[i].y + d * n.y, s.points[i].z + d * n.z};
+  }
 }
 
 // Each triangle becomes four, the new corners at the edge midpoints. One midpoint per edge,
@@ -148,7 +184,7 @@ gdr::Surface generate_surface(const std::string& spec, const std::string& data_d
     }
   };
   if (kind == "surface") {
-    refuse_unknown({"base", "subdiv", "turn"});
+    refuse_unknown({"base", "subdiv", "turn", "noise", "seed"});
     const auto base = parts.find("base");
     if (base == parts.end())
       throw gdr::Error(gdr::Status::InvalidInput, "'" + spec + "': base=FILE is required");
@@ -161,6 +197,10 @@ gdr::Surface generate_surface(const std::string& spec, const std::string& data_d
       throw gdr::Error(gdr::Status::InvalidInput, "'" + spec + "': subdiv must be 0..6");
     gdr::Surface s = gdr::io::read_surface(path);
     for (int i = 0; i < static_cast<int>(k); ++i) s = midpoint_subdivide(s);
+    const double noise = spec_number(parts, "noise", 0, spec);
+    if (!(noise >= 0 && noise <= 1))
+      throw gdr::Error(gdr::Status::InvalidInput, "'" + spec + "': noise must be 0..1 (mean edge lengths)");
+    if (noise > 0) add_normal_noise(s, noise, static_cast<unsigned>(spec_number(parts, "seed", 1, spec)));
     if (spec_number(parts, "turn", 0, spec) != 0) {
       const double c = std::cos(0.7), sn = std::sin(0.7), c2 = std::cos(0.4), s2 = std::sin(0.4);
       for (gdr::Point3& p : s.points) {
