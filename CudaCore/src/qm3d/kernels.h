@@ -189,7 +189,11 @@ GDR_HD_INLINE int popcount11(int x) {
 #ifdef __CUDA_ARCH__
   return __popc(x & ((1 << kSlots) - 1));
 #else
-  return __builtin_popcount(static_cast<unsigned>(x & ((1 << kSlots) - 1)));
+  // Bit arithmetic: without -mpopcnt __builtin_popcount is a call into libgcc.
+  unsigned v = static_cast<unsigned>(x) & ((1u << kSlots) - 1);
+  v = v - ((v >> 1) & 0x55555555u);
+  v = (v & 0x33333333u) + ((v >> 2) & 0x33333333u);
+  return static_cast<int>((((v + (v >> 4)) & 0x0f0f0f0fu) * 0x01010101u) >> 24);
 #endif
 }
 
