@@ -79,9 +79,12 @@ bool waits_across_a_bend(const Plc& plc, const EdgeTriangles& by_edge, int a, in
 // Pairs of segments (not nearly flat, sharing no endpoint) each of whose midpoints lies in
 // the other's diametral sphere. Their midpoints are then less than half the shorter one's
 // length apart: segments are bucketed by length in powers of two, each level's midpoints in
-// a grid of cells as large as its shortest length, and each segment looks for partners at
-// least as long as itself in the 27 cells around its midpoint, level by level.
-std::vector<std::array<int, 2>> mutually_encroaching(const Plc& plc) {
+// a grid of cells twice as large as its shortest length (a sorted array of cell keys), and
+// each segment looks for partners at least as long as itself in the 8 cells its ball of
+// half its length can reach, level by level. With `changed` (the rounds after the first), only pairs with a
+// changed segment can be new: those segments alone look, for partners of any length. Pairs
+// come sorted, each once, its shorter segment first.
+std::vector<std::array<int, 2>> mutually_encroaching(const Plc& plc, const std::vector<char>* changed = nullptr) {
   const std::size_t ns = plc.segments.size();
   std::vector<std::array<int, 2>> pairs;
   // Nearly flat segments are left out: on the boat (a surface of nearly flat triangles) they
@@ -103,45 +106,83 @@ std::vector<std::array<int, 2>> mutually_encroaching(const Plc& plc) {
     if (!skip(g)) lo = std::min(lo, level[g]), hi = std::max(hi, level[g]);
   }
   if (lo > hi) return pairs;
-  const auto cell_of = [](const Point3& p, double h) {
-    const auto q = [h](double v) { return static_cast<std::int64_t>(std::floor(v / h)) & 0x1fffff; };
-    return std::array<std::int64_t, 3>{q(p.x), q(p.y), q(p.z)};
+  // Level l's cells are 2^(l+1) wide: a ball of radius below 2^l around a point reaches
+  // only the cell the point lies in and, along each axis, the neighbour on the side of the
+  // cell's half it lies in.
+  const auto cell_at = [](double v, int l) { return std::floor(v / std::ldexp(1.0, l + 1)); };
+  const auto key_of = [](double x, double y, double z) {
+    const auto q = [](double v) { return static_cast<std::uint64_t>(static_cast<std::int64_t>(v) & 0x1fffff); };
+    return (q(x) << 42) | (q(y) << 21) | q(z);
   };
-  const auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) {
-    return (static_cast<std::uint64_t>(x & 0x1fffff) << 42) | (static_cast<std::uint64_t>(y & 0x1fffff) << 21) |
-           static_cast<std::uint64_t>(z & 0x1fffff);
-  };
-  std::vector<std::unordered_map<std::uint64_t, std::vector<int>>> grid(hi - lo + 1);
-  for (std::size_t g = 0; g < ns; ++g) {
-    if (skip(g)) continue;
-    const auto c = cell_of(mid[g], std::ldexp(1.0, level[g]));
-    grid[level[g] - lo][key(c[0], c[1], c[2])].push_back(static_cast<int>(g));
+  const auto key_at = [&](const Point3& p, int l) { return key_of(cell_at(p.x, l), cell_at(p.y, l), cell_at(p.z, l)); };
+  // Per level, (cell key, segment) sorted: built by one sort (a hash table of 2.2M
+  // segments took 1.2-1.4 s to build, and its lookups waited on memory).
+  std::vector<std::vector<std::pair<std::uint64_t, int>>> grid(hi - lo + 1);
+  for (std::size_t g = 0; g < ns; ++g)
+    if (!skip(g)) grid[level[g] - lo].push_back({key_at(mid[g], level[g]), static_cast<int>(g)});
+  for (auto& cells : grid) std::sort(cells.begin(), cells.end());
+  // Who looks: every segment, in the order of its cell (neighbours then look up the same
+  // cells, in cache), or the changed ones.
+  std::vector<int> who;
+  if (changed) {
+    for (std::size_t g = 0; g < ns; ++g)
+      if ((*changed)[g] && !skip(g)) who.push_back(static_cast<int>(g));
+  } else {
+    for (const auto& cells : grid)
+      for (const auto& [k, g] : cells) who.push_back(g);
   }
   const auto xyz = [](const Point3& p) { return std::array<double, 3>{p.x, p.y, p.z}; };
-  for (std::size_t a = 0; a < ns; ++a) {
-    if (skip(a)) continue;
-    const int a0 = plc.segments[a][0], a1 = plc.segments[a][1];
-    const auto pa0 = xyz(plc.points[a0]), pa1 = xyz(plc.points[a1]), ma = xyz(mid[a]);
-    for (int l = level[a]; l <= hi; ++l) {
-      const auto c = cell_of(mid[a], std::ldexp(1.0, l));
-      for (int dx = -1; dx <= 1; ++dx)
-        for (int dy = -1; dy <= 1; ++dy)
-          for (int dz = -1; dz <= 1; ++dz) {
-            const auto it = grid[l - lo].find(key(c[0] + dx, c[1] + dy, c[2] + dz));
-            if (it == grid[l - lo].end()) continue;
-            for (const int b : it->second) {
-              if (static_cast<std::size_t>(b) == a || len[b] < len[a] || (len[b] == len[a] && static_cast<std::size_t>(b) < a))
-                continue;  // each pair once, from its shorter segment
-              const int b0 = plc.segments[b][0], b1 = plc.segments[b][1];
-              if (b0 == a0 || b0 == a1 || b1 == a0 || b1 == a1) continue;
-              const auto pb0 = xyz(plc.points[b0]), pb1 = xyz(plc.points[b1]), mb = xyz(mid[b]);
-              if (pred::in_diametral_sphere(pa0.data(), pa1.data(), mb.data()) > 0 &&
-                  pred::in_diametral_sphere(pb0.data(), pb1.data(), ma.data()) > 0)
-                pairs.push_back({static_cast<int>(a), b});
-            }
+  const auto shorter = [&](int a, int b) { return len[a] < len[b] || (len[a] == len[b] && a < b); };
+  const long long n = static_cast<long long>(who.size());
+#pragma omp parallel
+  {
+    std::vector<std::array<int, 2>> mine;
+#pragma omp for schedule(dynamic, 4096) nowait
+    for (long long i = 0; i < n; ++i) {
+      const int a = who[i];
+      const int a0 = plc.segments[a][0], a1 = plc.segments[a][1];
+      const auto pa0 = xyz(plc.points[a0]), pa1 = xyz(plc.points[a1]), ma = xyz(mid[a]);
+      // Partners lie at a's level or above (at any level for a changed segment); a rounded
+      // distance well beyond half the shorter length (the midpoints are rounded, by up to an
+      // ulp of the coordinates) rules one out before the exact tests.
+      const double big = std::max({std::fabs(ma[0]), std::fabs(ma[1]), std::fabs(ma[2]), len[a]});
+      for (int l = changed ? lo : level[a]; l <= hi; ++l) {
+        const auto& cells = grid[l - lo];
+        const double h = std::ldexp(1.0, l + 1);
+        const double reach = 0.5 * std::min(len[a], h) * (1 + 1e-9) + 1e-12 * big;
+        double c[3], side[3];
+        for (int k = 0; k < 3; ++k) {
+          c[k] = cell_at(ma[k], l);
+          side[k] = ma[k] / h - c[k] < 0.5 ? -1 : 1;
+        }
+        for (int corner = 0; corner < 8; ++corner) {
+          const std::uint64_t k = key_of(c[0] + (corner & 1 ? side[0] : 0), c[1] + (corner & 2 ? side[1] : 0),
+                                         c[2] + (corner & 4 ? side[2] : 0));
+          auto it = std::lower_bound(cells.begin(), cells.end(), std::make_pair(k, -1));
+          for (; it != cells.end() && it->first == k; ++it) {
+            const int b = it->second;
+            if (b == a) continue;
+            // Each pair once: from its shorter segment, or from the changed one that
+            // is shorter when both changed.
+            if (!changed ? shorter(b, a) : ((*changed)[b] && shorter(b, a))) continue;
+            const int b0 = plc.segments[b][0], b1 = plc.segments[b][1];
+            if (b0 == a0 || b0 == a1 || b1 == a0 || b1 == a1) continue;
+            const Point3& q = mid[b];
+            if ((q.x - ma[0]) * (q.x - ma[0]) + (q.y - ma[1]) * (q.y - ma[1]) + (q.z - ma[2]) * (q.z - ma[2]) >
+                reach * reach)
+              continue;
+            const auto pb0 = xyz(plc.points[b0]), pb1 = xyz(plc.points[b1]), mb = xyz(mid[b]);
+            if (pred::in_diametral_sphere(pa0.data(), pa1.data(), mb.data()) > 0 &&
+                pred::in_diametral_sphere(pb0.data(), pb1.data(), ma.data()) > 0)
+              mine.push_back(shorter(a, b) ? std::array<int, 2>{a, b} : std::array<int, 2>{b, a});
           }
+        }
+      }
     }
+#pragma omp critical(gdr_presplit_pairs)
+    pairs.insert(pairs.end(), mine.begin(), mine.end());
   }
+  std::sort(pairs.begin(), pairs.end());  // the same on any number of threads
   return pairs;
 }
 
@@ -149,8 +190,9 @@ std::vector<std::array<int, 2>> mutually_encroaching(const Plc& plc) {
 
 int split_mutually_encroaching_segments(Plc& plc, int max_rounds) {
   int added = 0;
+  std::vector<char> changed;  // the segments the last round split or made
   for (int round = 0; round < max_rounds; ++round) {
-    const std::vector<std::array<int, 2>> pairs = mutually_encroaching(plc);
+    const std::vector<std::array<int, 2>> pairs = mutually_encroaching(plc, round > 0 ? &changed : nullptr);
     if (pairs.empty()) break;
     // The triangles beside the segments of those pairs, by their edges: the facets there, and
     // the triangles to split (only these: a scan of 369k triangles has no such pair).
@@ -172,8 +214,10 @@ int split_mutually_encroaching_segments(Plc& plc, int max_rounds) {
         split[a] = split[b] = 1;
     }
     if (std::find(split.begin(), split.end(), 1) == split.end()) break;
+    changed.assign(ns, 0);
     for (std::size_t g = 0; g < ns; ++g) {
       if (!split[g]) continue;
+      changed[g] = 1;
       const int a = plc.segments[g][0], b = plc.segments[g][1];
       const int m = static_cast<int>(plc.points.size());
       plc.points.push_back(midpoint(plc.points[a], plc.points[b]));
@@ -181,6 +225,7 @@ int split_mutually_encroaching_segments(Plc& plc, int max_rounds) {
       plc.segments[g] = {a, m};
       plc.segments.push_back({m, b});
       plc.segment_flat.push_back(plc.segment_flat[g]);
+      changed.push_back(1);
       // Each triangle (.., a, b, ..) becomes (a, m, c) and (m, b, c), in its orientation.
       const auto range = by_edge.equal_range(edge_key(a, b));
       std::vector<int> beside;
