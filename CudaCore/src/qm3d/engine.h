@@ -230,6 +230,7 @@ struct Engine {
       }
       if (params.check_links) {
         m3d::compact(dm);
+        wake_all();  // the sleepers' tetrahedra and subfaces are numbered anew
         m3d::check_host_mesh(dm.to_host(host.input_points));
       }
       if (res.cap_reached) break;
@@ -373,7 +374,8 @@ struct Engine {
       if (!slivers_held) wake_all();
       slivers_held = true;
     }
-    if (sleep.size() != static_cast<std::size_t>(dm.ntet)) {  // the first iteration
+    if (sleep.size() != static_cast<std::size_t>(dm.ntet)) {  // the first iteration (insert keeps the size)
+      wake_all();
       sleep.resize_discard(dm.ntet);
       sleep.zero();
     }
