@@ -180,7 +180,7 @@ struct Engine {
       if (idle >= 2 && !idle_twice) wake_all();  // their points are made another way now
       idle_twice = idle >= 2;
       compute_splitting_points(nl, iter);               // line 6
-      if (params.strategies.blocking) count_segment_failures(cand_all.data(), nullptr, nl);
+      if (params.strategies.blocking && params.strategies.sleeping) count_segment_failures(cand_all.data(), nullptr, nl);
       const std::size_t ns = filter(nl);                // line 7 (S1, S3)
       grow_cavities(ns);                                // line 8 (S2, S3, S5)
       check_abort();  // an iteration of millions of points takes seconds on a few CPU threads
@@ -374,7 +374,7 @@ struct Engine {
       if (!slivers_held) wake_all();
       slivers_held = true;
     }
-    if (sleep.size() != static_cast<std::size_t>(dm.ntet)) {  // the first iteration (insert keeps the size)
+    if (params.strategies.sleeping && sleep.size() != static_cast<std::size_t>(dm.ntet)) {  // the first iteration (insert keeps the size)
       wake_all();
       sleep.resize_discard(dm.ntet);
       sleep.zero();
@@ -724,7 +724,7 @@ struct Engine {
       const bool room = (mv.tflag[t] & m3d::kMakeRoom) != 0;
       if ((mv.tflag[t] & m3d::kDead) || room != (cs[j].room != 0)) return;
       int w = 1 << slot;
-      if (slot >= kSlotEdge0 && f != m3d::kFailEncroach) w |= 1 << (kSlots + slot - kSlotEdge0);
+      if (slot >= kSlotEdge0 && f != m3d::kFailEncroach) w |= sleep_counts_bit(slot);
       if (slot == kSlotTet && room) w |= kSleptRoom;
       exec::atomic_or(&sl[t], w);
       falls[j] = 1;
@@ -768,11 +768,7 @@ struct Engine {
         const int s = ~w.what;
         wake = (mv.sflag[s] & m3d::kSubDead) || changed(mv.st[2 * s] >> 2) || changed(mv.st[2 * s + 1] >> 2);
       }
-      if (!wake) return;
-      int bits = 1 << slot;
-      if (slot >= kSlotEdge0) bits |= 1 << (kSlots + slot - kSlotEdge0);
-      if (slot == kSlotTet) bits |= kSleptRoom;
-      exec::atomic_and(&sl[t], ~bits);
+      if (wake) exec::atomic_and(&sl[t], ~sleep_bits(slot));
     });
     exec::keep_if(watch, [=] GDR_HD(const Watch& w) { return (sl[w.elem >> 4] & (1 << (w.elem & 15))) != 0; }, count);
     count.release();

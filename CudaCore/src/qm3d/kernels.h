@@ -384,6 +384,14 @@ GDR_HD_INLINE void make_subface_candidate(const TetView& m, int s, unsigned id, 
 // tetrahedron's request for room is what it was.
 enum : int { kSleptRoom = 1 << (kSlots + 6) };
 
+// The bit of a sleeping subsegment (slot >= kSlotEdge0) whose failure counts (blocking).
+GDR_HD_INLINE int sleep_counts_bit(int slot) { return 1 << (kSlots + slot - kSlotEdge0); }
+
+// Every bit an element of this slot owns in the sleep word.
+GDR_HD_INLINE int sleep_bits(int slot) {
+  return 1 << slot | (slot >= kSlotEdge0 ? sleep_counts_bit(slot) : 0) | (slot == kSlotTet ? kSleptRoom : 0);
+}
+
 GDR_HD_INLINE bool asleep(const TetView& m, const int* sleep, int e) {
   const int t = e >> 4, slot = e & 15, w = sleep[t];
   if (!(w & (1 << slot))) return false;
@@ -419,7 +427,7 @@ struct ComputeSplittingPoints {
     if (sleep && asleep(m, sleep, e)) {
       // It would fail as before; a subsegment's split still counts as failing (blocking).
       out[j].kind = m3d::kDropped;
-      if ((e & 15) >= kSlotEdge0 && (sleep[e >> 4] & (1 << (kSlots + (e & 15) - kSlotEdge0)))) {
+      if ((e & 15) >= kSlotEdge0 && (sleep[e >> 4] & sleep_counts_bit(e & 15))) {
         make_segment_candidate(m, e >> 4, (e & 15) - kSlotEdge0, 0, out[j]);
         if (out[j].kind == m3d::kSegmentSplit) out[j].kind = m3d::kSleeping;
       }
