@@ -9,7 +9,7 @@
 // cavity rule), so TetGen meshes everything the surface encloses and the cells outside the
 // domain are removed here, by flooding tets from their subfaces.
 //
-// Switches: "pcnO0JQ": p (PLC: TetGen's constrained Delaunay tetrahedralization, which may
+// Switches: "pcnnO0JQ": p (PLC: TetGen's constrained Delaunay tetrahedralization, which may
 // split segments and facets with Steiner points to recover them; TetGen merges triangles of
 // one marker, i.e. of one facet, that meet within its default 0.1 degree of flat. A facet
 // that check_surface merged across bends larger than that (coplanar_angle) keeps TetGen
@@ -17,7 +17,8 @@
 // those edges. Asking TetGen to merge them too, at 2-5 degrees, crashed it or gave
 // inconsistent subfaces on boat.off), c (keep the convex hull:
 // TetGen's own removal of the exterior cost 0.8 s of 5.5 s on a 370k-triangle surface and is
-// redundant with ours, which also removes the cells outside), n (neighbours), O0 (no
+// redundant with ours, which also removes the cells outside), nn (neighbours, and the
+// tetrahedra on either side of each subface: no search of the faces for them), O0 (no
 // mesh optimisation: its flips and smoothing would leave a mesh that is not constrained
 // Delaunay), J (keep the point numbering), Q (quiet). Measured on ../shared/data: Y (keep
 // the input surface unsplit) leaves faces that are not locally Delaunay (2958 on boat.off,
@@ -128,26 +129,6 @@ void restore_order(const std::vector<int>& order, tetgenio& out) {
   renumber(out.trifacelist, 3 * static_cast<std::size_t>(out.numberoftrifaces));
 }
 
-// A triangle's corners, sorted, as a hash key.
-struct FaceKey {
-  int v[3];
-  bool operator==(const FaceKey& o) const { return v[0] == o.v[0] && v[1] == o.v[1] && v[2] == o.v[2]; }
-};
-struct FaceKeyHash {
-  std::size_t operator()(const FaceKey& k) const {
-    std::uint64_t h = static_cast<std::uint32_t>(k.v[0]) * 0x9E3779B97F4A7C15ull;
-    h = (h ^ (h >> 29)) + static_cast<std::uint32_t>(k.v[1]) * 0xBF58476D1CE4E5B9ull;
-    h = (h ^ (h >> 31)) + static_cast<std::uint32_t>(k.v[2]) * 0x94D049BB133111EBull;
-    return static_cast<std::size_t>(h ^ (h >> 32));
-  }
-};
-FaceKey face_key(int a, int b, int c) {
-  if (a > b) std::swap(a, b);
-  if (b > c) std::swap(b, c);
-  if (a > b) std::swap(a, b);
-  return {{a, b, c}};
-}
-
 // The face of tet t (corners tv[4t..]) whose corners are {a, b, c}: the corner not among
 // them; -1 if t has no such face.
 int face_index(const std::vector<int>& tv, int t, int a, int b, int c) {
@@ -249,48 +230,50 @@ HostTetMesh convert(const Plc& plc, const tetgenio& out) {
   for (int v = 0; v < nin; ++v)
     if (!used[v]) internal("TetGen left out input point " + str(v));
 
-  // Subfaces, found among the tet faces by their corners; the side by orientation.
+  // Subfaces: TetGen names the tets on either side of each (-nn), but on the hull side
+  // TetGen 1.5.0 may name tet 0: the first named tet that has the subface as a face gives
+  // it, its neighbour across it the other side; the side comes from the corners. Each
+  // check records its first failure (no exceptions inside OpenMP).
   const int nsf = out.numberoftrifaces;
+  if (nsf > 0 && !out.adjtetlist) internal("TetGen did not return the tetrahedra of its subfaces");
   m.tsub.assign(4 * static_cast<std::size_t>(nt), -1);
   m.sv.resize(3 * static_cast<std::size_t>(nsf));
   m.st.assign(2 * static_cast<std::size_t>(nsf), -1);
   m.sfacet.resize(nsf);
-  std::unordered_map<FaceKey, int, FaceKeyHash> by_corners;
-  by_corners.reserve(2 * static_cast<std::size_t>(nsf));
+  int bad_marker = -1, not_a_face = -1, twice = -1;
+  const auto first = [](int& into, int s) {
+#pragma omp critical(gdr_cdt_bad_subface)
+    if (into < 0 || s < into) into = s;
+  };
+#pragma omp parallel for schedule(static) if (nsf > 20000)
   for (int s = 0; s < nsf; ++s) {
     for (int k = 0; k < 3; ++k) m.sv[3 * s + k] = out.trifacelist[3 * s + k];
     const int mark = out.trifacemarkerlist[s];
-    if (mark < 1 || mark > nf) internal("subface " + str(s) + " has marker " + str(mark));
+    if (mark < 1 || mark > nf) first(bad_marker, s);
     m.sfacet[s] = mark - 1;
-    if (!by_corners.emplace(face_key(m.sv[3 * s], m.sv[3 * s + 1], m.sv[3 * s + 2]), s).second)
-      internal("TetGen returned subface " + str(s) + " twice");
-  }
-  // Each face is looked up once, from its lower-numbered side; a subface met twice (which
-  // TetGen never returns) is caught by the atomic exchange.
-  int two_on_one_side = -1;
-#pragma omp parallel for schedule(static) if (nt > 20000)
-  for (int x = 0; x < 4 * nt; ++x) {
-    if (m.tn[x] >= 0 && m.tn[x] < x) continue;  // an interior face: seen from its other side
-    const int t = x / 4, i = x % 4;
-    const int a = m.tv[4 * t + m3d::face_corner(i, 0)], b = m.tv[4 * t + m3d::face_corner(i, 1)],
-              c = m.tv[4 * t + m3d::face_corner(i, 2)];
-    const auto it = by_corners.find(face_key(a, b, c));
-    if (it == by_corners.end()) continue;
-    const int s = it->second;
+    const int a = m.sv[3 * s], b = m.sv[3 * s + 1], c = m.sv[3 * s + 2];
+    int x = -1;
+    for (int k = 0; k < 2 && x < 0; ++k) {
+      const int t = out.adjtetlist[2 * s + k];
+      const int i = t >= 0 && t < nt ? face_index(m.tv, t, a, b, c) : -1;
+      if (i >= 0) x = 4 * t + i;
+    }
+    if (x < 0) {
+      first(not_a_face, s);
+      continue;
+    }
     for (const int y : {x, m.tn[x]}) {
       if (y < 0) continue;
-      const int side = face_orientation(m.tv, y / 4, y % 4, m.sv[3 * s], m.sv[3 * s + 1]) == 1 ? 0 : 1;
+      m.st[2 * s + (face_orientation(m.tv, y / 4, y % 4, a, b) == 1 ? 0 : 1)] = y;
       int before;
 #pragma omp atomic capture
-      { before = m.st[2 * s + side]; m.st[2 * s + side] = y; }
-      if (before >= 0) {
-#pragma omp critical(gdr_cdt_bad_subface)
-        two_on_one_side = s;
-      }
-      m.tsub[y] = s;
+      { before = m.tsub[y]; m.tsub[y] = s; }
+      if (before >= 0) first(twice, s);
     }
   }
-  if (two_on_one_side >= 0) internal("subface " + str(two_on_one_side) + " has two tets on one side");
+  if (bad_marker >= 0) internal("subface " + str(bad_marker) + " has marker " + str(out.trifacemarkerlist[bad_marker]));
+  if (not_a_face >= 0) internal("subface " + str(not_a_face) + " is not a face of the tets TetGen gives for it");
+  if (twice >= 0) internal("TetGen returned subface " + str(twice) + " twice");
   std::vector<char> on_surface(nin, 0);
   for (int s = 0; s < nsf; ++s)
     for (int k = 0; k < 3; ++k)
@@ -385,9 +368,13 @@ HostTetMesh keep_domain(const Plc& plc, const HostTetMesh& full, const std::vect
     if (map_face(full.st[2 * s]) >= 0 || map_face(full.st[2 * s + 1]) >= 0) new_sub[s] = ks++;
   std::vector<char> used(np, 0);
   for (int v = 0; v < full.input_points; ++v) used[v] = 1;
+#pragma omp parallel for schedule(static) if (nt > 20000)
   for (int t = 0; t < nt; ++t)
     if (new_tet[t] >= 0)
-      for (int k = 0; k < 4; ++k) used[full.tv[4 * t + k]] = 1;
+      for (int k = 0; k < 4; ++k) {
+#pragma omp atomic write
+        used[full.tv[4 * t + k]] = 1;
+      }
   std::vector<int> new_point(np, -1);
   int kp = 0;
   for (int v = 0; v < np; ++v)
@@ -399,6 +386,7 @@ HostTetMesh keep_domain(const Plc& plc, const HostTetMesh& full, const std::vect
   m.ptype.resize(kp);
   m.pseg.resize(kp);
   m.pfacet.resize(kp);
+#pragma omp parallel for schedule(static) if (np > 20000)
   for (int v = 0; v < np; ++v) {
     const int w = new_point[v];
     if (w < 0) continue;
@@ -413,6 +401,7 @@ HostTetMesh keep_domain(const Plc& plc, const HostTetMesh& full, const std::vect
   m.tseg.assign(kt, 0);
   const bool regions = !plc.regions.empty();
   if (regions) m.tregion.resize(kt);
+#pragma omp parallel for schedule(static) if (nt > 20000)
   for (int t = 0; t < nt; ++t) {
     const int u = new_tet[t];
     if (u < 0) continue;
@@ -430,6 +419,7 @@ HostTetMesh keep_domain(const Plc& plc, const HostTetMesh& full, const std::vect
   m.sv.resize(3 * static_cast<std::size_t>(ks));
   m.st.resize(2 * static_cast<std::size_t>(ks));
   m.sfacet.resize(ks);
+#pragma omp parallel for schedule(static) if (ns > 20000)
   for (int s = 0; s < ns; ++s) {
     const int u = new_sub[s];
     if (u < 0) continue;
@@ -595,11 +585,11 @@ HostTetMesh domain_cdt(const Plc& plc, const Callbacks& callbacks, const std::ve
     const char* next;  // what the warning says comes next, should this attempt fail
   };
   static constexpr Attempt kAttempts[] = {
-      {"pcnO0JQ", 0, "trying again without merging coplanar facets (-M)"},
-      {"pcnO0JQM", 0, "trying again with the points in another order"},
-      {"pcnO0JQM", 2, "trying again with the points in another order"},
-      {"pcnO0JQM", 3, "trying again with the input surface kept unsplit (-Y)"},
-      {"pcYnO0JQ", 0, nullptr},
+      {"pcnnO0JQ", 0, "trying again without merging coplanar facets (-M)"},
+      {"pcnnO0JQM", 0, "trying again with the points in another order"},
+      {"pcnnO0JQM", 2, "trying again with the points in another order"},
+      {"pcnnO0JQM", 3, "trying again with the input surface kept unsplit (-Y)"},
+      {"pcYnnO0JQ", 0, nullptr},
   };
   const int count = static_cast<int>(sizeof(kAttempts) / sizeof(kAttempts[0])) - (last_resort ? 0 : 1);
   for (int attempt = 0;; ++attempt) {
@@ -618,7 +608,7 @@ HostTetMesh domain_cdt(const Plc& plc, const Callbacks& callbacks, const std::ve
       if (callbacks.warning)
         callbacks.warning(std::string("TetGen's constrained Delaunay tetrahedralization failed (") + e.what() +
                           "); retrying with the input surface kept unsplit (-Y)");
-      outcome = run_tetgen_process("pcYnO0JQ", in, out, limit, waiting);
+      outcome = run_tetgen_process("pcYnnO0JQ", in, out, limit, waiting);
       unsplit = true;
     }
     std::string what;

@@ -31,7 +31,7 @@ namespace {
 struct Header {
   std::int32_t code;  // 0: done; else the int TetGen threw (its exit codes)
   std::int32_t points, tets, corners, subfaces;
-  std::int32_t has_point_markers, has_neighbours, has_subface_markers;
+  std::int32_t has_point_markers, has_neighbours, has_subface_markers, has_subface_tets;
 };
 
 // TetGen's exit codes (tetgen.h, terminatetetgen) as our errors.
@@ -91,6 +91,7 @@ bool write_all(int fd, const void* data, std::size_t bytes) {
     h.has_point_markers = out.pointmarkerlist != nullptr;
     h.has_neighbours = out.neighborlist != nullptr;
     h.has_subface_markers = out.trifacemarkerlist != nullptr;
+    h.has_subface_tets = out.adjtetlist != nullptr;
   }
   const auto n = [](std::int32_t a, std::int32_t b) { return static_cast<std::size_t>(a) * b; };
   bool ok = write_all(fd, &h, sizeof h);
@@ -100,7 +101,8 @@ bool write_all(int fd, const void* data, std::size_t bytes) {
          write_all(fd, out.tetrahedronlist, n(h.tets, h.corners) * sizeof(int)) &&
          (!h.has_neighbours || write_all(fd, out.neighborlist, n(h.tets, 4) * sizeof(int))) &&
          write_all(fd, out.trifacelist, n(h.subfaces, 3) * sizeof(int)) &&
-         (!h.has_subface_markers || write_all(fd, out.trifacemarkerlist, n(h.subfaces, 1) * sizeof(int)));
+         (!h.has_subface_markers || write_all(fd, out.trifacemarkerlist, n(h.subfaces, 1) * sizeof(int))) &&
+         (!h.has_subface_tets || write_all(fd, out.adjtetlist, n(h.subfaces, 2) * sizeof(int)));
   }
   _exit(ok ? 0 : 1);  // no destructors, no atexit handlers: they belong to the parent
 }
@@ -181,7 +183,8 @@ TetGenOutcome run_tetgen_process(const std::string& switches, tetgenio& in, tetg
          r.array(out.tetrahedronlist, n(h.tets, h.corners)) &&
          (!h.has_neighbours || r.array(out.neighborlist, n(h.tets, 4))) &&
          r.array(out.trifacelist, n(h.subfaces, 3)) &&
-         (!h.has_subface_markers || r.array(out.trifacemarkerlist, n(h.subfaces, 1)));
+         (!h.has_subface_markers || r.array(out.trifacemarkerlist, n(h.subfaces, 1))) &&
+         (!h.has_subface_tets || r.array(out.adjtetlist, n(h.subfaces, 2)));
   }
   ::close(fds[0]);
   int status = 0;

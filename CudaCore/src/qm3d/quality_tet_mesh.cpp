@@ -222,9 +222,12 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
   };
   presplit();
   const auto cdt = [&](double min_cells = 0) {
+    const auto t_seeds = Clock::now();
     const std::vector<double> seeds = options.refine && strategies.interior_seeds
                                           ? cdt3d::interior_seeds(plc, kSeedSpacing, min_cells)
                                           : std::vector<double>{};
+    if (std::getenv("GDR_TRACE"))
+      std::fprintf(stderr, "gdr-trace interior seeds: %zu points, %.3f s\n", seeds.size() / 3, since(t_seeds));
     return cdt3d::initial_cdt(plc, cb, seeds);
   };
   m3d::HostTetMesh mesh;
