@@ -309,10 +309,14 @@ std::array<double, 3> unit_normal(const Plc& plc, int t) {
 void make_facets(const Surface& s, const EdgeTable& edges, const CheckOptions& options, Plc& plc) {
   const int nt = static_cast<int>(plc.triangles.size());
   const auto& P = plc.points;
-  UnionFind uf(nt);
-  std::vector<int> flat_edges;  // near-flat but not coplanar: merge candidates
+  // Each edge of two triangles: 1 when they are coplanar and flat (one facet), 2 when near
+  // flat (a merge candidate), else 0. Exact tests, in parallel; the unions after.
+  enum : signed char { kApart, kCoplanar, kNearlyFlat };
+  const int ne = edges.size();
+  std::vector<signed char> kind(ne, kApart);
   const double cos_flat = std::cos(options.coplanar_angle * 3.14159265358979323846 / 180.0);
-  for (int k = 0; k < edges.size(); ++k) {
+#pragma omp parallel for schedule(static) if (ne > 20000)
+  for (int k = 0; k < ne; ++k) {
     if (edges.count(k) != 2) continue;
     const int t1 = edges.tri[edges.start[k]], t2 = edges.tri[edges.start[k] + 1];
     const int a = edges.edge[k][0], b = edges.edge[k][1];
@@ -323,13 +327,18 @@ void make_facets(const Surface& s, const EdgeTable& edges, const CheckOptions& o
       if (options.coplanar_angle > 0) {
         // Flat: the two triangles' normals, turned the same way round the edge, nearly opposite.
         const auto n1 = normal_of(P[a], P[b], P[c]), n2 = normal_of(P[a], P[b], P[d]);
-        if (-dot3(n1, n2) >= cos_flat * std::sqrt(dot3(n1, n1) * dot3(n2, n2))) flat_edges.push_back(k);
+        if (-dot3(n1, n2) >= cos_flat * std::sqrt(dot3(n1, n1) * dot3(n2, n2))) kind[k] = kNearlyFlat;
       }
       continue;
     }
     const int axis = geom::projection_axis(P[a], P[b], P[c]);
-    if (geom::orient2d(axis, P[a], P[b], P[c]) == geom::orient2d(axis, P[a], P[b], P[d])) continue;
-    uf.unite(t1, t2);
+    if (geom::orient2d(axis, P[a], P[b], P[c]) != geom::orient2d(axis, P[a], P[b], P[d])) kind[k] = kCoplanar;
+  }
+  UnionFind uf(nt);
+  std::vector<int> flat_edges;  // near-flat but not coplanar: merge candidates
+  for (int k = 0; k < ne; ++k) {
+    if (kind[k] == kCoplanar) uf.unite(edges.tri[edges.start[k]], edges.tri[edges.start[k] + 1]);
+    else if (kind[k] == kNearlyFlat) flat_edges.push_back(k);
   }
   plc.triangle_facet.assign(nt, -1);
   plc.facet_origin.clear();
@@ -348,34 +357,49 @@ void make_facets(const Surface& s, const EdgeTable& edges, const CheckOptions& o
   if (flat_edges.empty()) return;
 
   // Merge planar facets across near-flat edges: grown from each facet in turn (breadth
-  // first), taking a neighbour only when all its triangles lie within the cone.
+  // first), taking a neighbour only when all its triangles lie within the cone. Per facet
+  // its triangles and its neighbours across near-flat edges, as counted arrays.
   const int nf = static_cast<int>(plc.facet_origin.size());
-  std::vector<std::vector<int>> tris(nf);
-  for (int t = 0; t < nt; ++t) tris[plc.triangle_facet[t]].push_back(t);
-  std::vector<std::vector<int>> across(nf);  // planar facet -> neighbours over near-flat edges
+  const auto counted = [nf](const std::vector<std::array<int, 2>>& pairs, std::vector<int>& start,
+                            std::vector<int>& items) {
+    start.assign(nf + 1, 0);
+    for (const auto& p : pairs) ++start[p[0] + 1];
+    for (int f = 0; f < nf; ++f) start[f + 1] += start[f];
+    items.resize(pairs.size());
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (const auto& p : pairs) items[fill[p[0]]++] = p[1];
+  };
+  std::vector<std::array<int, 2>> pairs;
+  pairs.reserve(nt);
+  for (int t = 0; t < nt; ++t) pairs.push_back({plc.triangle_facet[t], t});
+  std::vector<int> tri_start, tris;
+  counted(pairs, tri_start, tris);
+  pairs.clear();
   for (int k : flat_edges) {
     const int f1 = plc.triangle_facet[edges.tri[edges.start[k]]];
     const int f2 = plc.triangle_facet[edges.tri[edges.start[k] + 1]];
     if (f1 == f2) continue;
-    across[f1].push_back(f2);
-    across[f2].push_back(f1);
+    pairs.push_back({f1, f2});
+    pairs.push_back({f2, f1});
   }
+  std::vector<int> across_start, across;
+  counted(pairs, across_start, across);
   const double cos_cone = std::cos(options.merge_cone * 3.14159265358979323846 / 180.0);
   std::vector<int> group(nf, -1);
   std::vector<int> queue;
   int groups = 0;
   for (int f = 0; f < nf; ++f) {
     if (group[f] >= 0) continue;
-    const auto n0 = unit_normal(plc, tris[f][0]);
+    const auto n0 = unit_normal(plc, tris[tri_start[f]]);
     group[f] = groups;
     queue.assign(1, f);
     for (std::size_t q = 0; q < queue.size(); ++q)
-      for (int g : across[queue[q]]) {
+      for (int i = across_start[queue[q]]; i < across_start[queue[q] + 1]; ++i) {
+        const int g = across[i];
         if (group[g] >= 0) continue;
         bool in_cone = true;
-        for (int t : tris[g]) {
-          in_cone = in_cone && std::fabs(dot3(unit_normal(plc, t), n0)) >= cos_cone;
-        }
+        for (int j = tri_start[g]; in_cone && j < tri_start[g + 1]; ++j)
+          in_cone = std::fabs(dot3(unit_normal(plc, tris[j]), n0)) >= cos_cone;
         if (!in_cone) continue;
         group[g] = groups;
         queue.push_back(g);
@@ -424,13 +448,18 @@ void make_segments(const Surface& s, const EdgeTable& edges, const std::vector<i
     throw Error(Status::InvalidInput,
                 "segments that are not edges of the surface: " + list_items(bad, count) +
                     ". Segments inside facets or free in the volume are not supported yet");
-  std::sort(plc.segments.begin(), plc.segments.end());
-  plc.segments.erase(std::unique(plc.segments.begin(), plc.segments.end()), plc.segments.end());
+  // The edges' segments come sorted (EdgeTable's order); the input's own may not.
+  if (!s.segments.empty()) {
+    std::sort(plc.segments.begin(), plc.segments.end());
+    plc.segments.erase(std::unique(plc.segments.begin(), plc.segments.end()), plc.segments.end());
+  }
   // Nearly flat segments: two triangles meeting within kNearlyFlat degrees of flat.
   const double cos_flat = std::cos(kNearlyFlat * 3.14159265358979323846 / 180.0);
   const auto& P = plc.points;
-  plc.segment_flat.assign(plc.segments.size(), 0);
-  for (std::size_t g = 0; g < plc.segments.size(); ++g) {
+  const long long ng = static_cast<long long>(plc.segments.size());
+  plc.segment_flat.assign(ng, 0);
+#pragma omp parallel for schedule(static) if (ng > 20000)
+  for (long long g = 0; g < ng; ++g) {
     const auto it = std::lower_bound(edges.edge.begin(), edges.edge.end(), plc.segments[g]);
     const int k = static_cast<int>(it - edges.edge.begin());
     if (it == edges.edge.end() || *it != plc.segments[g] || edges.count(k) != 2) continue;
