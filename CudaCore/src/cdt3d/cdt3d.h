@@ -48,6 +48,11 @@ struct Plc {
   long long duplicate_triangles_merged = 0;
   long long unused_points = 0;                   // input points no triangle or segment uses
   long long outside_triangles = 0;               // dropped: no domain cell on either side
+  // Edge counts of the final triangles: edges of one triangle (an open boundary), and the
+  // first edge (in point order) of three or more triangles with its count, or {-1, -1}.
+  long long open_edges = 0;
+  std::array<int, 2> first_branching_edge = {-1, -1};
+  int first_branching_triangles = 0;
   double volume = 0;                             // of the domain: sum of its cells' volumes
 };
 
@@ -61,6 +66,9 @@ struct CheckOptions {
   // Refuse triangles of zero area but for rounding too (the tet mesher: TetGen's recovery
   // of such needles stopped on assertions, or left them half covered).
   bool refuse_rounding_degenerate = false;
+  // false: no facets and no segments but the input's own (checked to be triangle edges);
+  // the restricted mesher finds its features itself.
+  bool facets = true;
 };
 
 // Checks `surface` and cleans it into a Plc. Throws Error(InvalidInput) for NaN/Inf

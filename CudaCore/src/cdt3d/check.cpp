@@ -420,8 +420,8 @@ void make_facets(const Surface& s, const EdgeTable& edges, const CheckOptions& o
 }
 
 // Segments: edges whose triangles are not all in one facet, and the input's segments.
-void make_segments(const Surface& s, const EdgeTable& edges, const std::vector<int>& origin, Plc& plc) {
-  for (int k = 0; k < edges.size(); ++k) {
+void make_segments(const Surface& s, const EdgeTable& edges, const std::vector<int>& origin, bool facets, Plc& plc) {
+  for (int k = 0; facets && k < edges.size(); ++k) {
     const int first = edges.tri[edges.start[k]];
     bool one_facet = edges.count(k) == 2;
     for (int i = edges.start[k]; one_facet && i < edges.start[k + 1]; ++i)
@@ -449,10 +449,11 @@ void make_segments(const Surface& s, const EdgeTable& edges, const std::vector<i
                 "segments that are not edges of the surface: " + list_items(bad, count) +
                     ". Segments inside facets or free in the volume are not supported yet");
   // The edges' segments come sorted (EdgeTable's order); the input's own may not.
-  if (!s.segments.empty()) {
+  if (!s.segments.empty() || !facets) {
     std::sort(plc.segments.begin(), plc.segments.end());
     plc.segments.erase(std::unique(plc.segments.begin(), plc.segments.end()), plc.segments.end());
   }
+  if (!facets) return;
   // Nearly flat segments: two triangles meeting within kNearlyFlat degrees of flat.
   const double cos_flat = std::cos(kNearlyFlat * 3.14159265358979323846 / 180.0);
   const auto& P = plc.points;
@@ -514,9 +515,16 @@ Plc check_surface(const Surface& surface, const CheckOptions& options, const Cal
     if (plc.outside_triangles) edges = build_edges(plc.triangles);
   }
   stamp("cells");
+  for (int k = 0; k < edges.size(); ++k) {
+    plc.open_edges += edges.count(k) == 1;
+    if (edges.count(k) > 2 && plc.first_branching_edge[0] < 0) {
+      plc.first_branching_edge = edges.edge[k];
+      plc.first_branching_triangles = edges.count(k);
+    }
+  }
   progress(callbacks, 0.8, "facets and segments");
-  make_facets(surface, edges, options, plc);
-  make_segments(surface, edges, origin, plc);
+  if (options.facets) make_facets(surface, edges, options, plc);
+  make_segments(surface, edges, origin, options.facets, plc);
   stamp("facets, segments");
   progress(callbacks, 1.0, "surface checked");
   return plc;

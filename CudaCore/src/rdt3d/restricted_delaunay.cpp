@@ -51,25 +51,18 @@ std::uint64_t edge_key(int a, int b) {
 // Whether every edge has two triangles; throws for an edge of three or more (the inside of
 // such a surface is not defined by parity).
 bool closed_manifold(const cdt3d::Plc& plc) {
-  std::map<std::uint64_t, int> count;
-  for (const auto& t : plc.triangles)
-    for (int k = 0; k < 3; ++k) ++count[edge_key(t[k], t[(k + 1) % 3])];
-  bool closed = true;
-  for (const auto& [key, n] : count) {
-    if (n > 2) {
-      const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffffu);
-      auto input_id = [&](int v) {
-        for (std::size_t i = 0; i < plc.point_map.size(); ++i)
-          if (plc.point_map[i] == v) return static_cast<long long>(i);
-        return static_cast<long long>(v);
-      };
-      throw Error(Status::InvalidInput, "the surface is not manifold: the edge (" + std::to_string(input_id(a)) +
-                                            ", " + std::to_string(input_id(b)) + ") has " +
-                                            std::to_string(n) + " triangles");
-    }
-    closed = closed && n == 2;
+  if (plc.first_branching_edge[0] >= 0) {
+    auto input_id = [&](int v) {
+      for (std::size_t i = 0; i < plc.point_map.size(); ++i)
+        if (plc.point_map[i] == v) return static_cast<long long>(i);
+      return static_cast<long long>(v);
+    };
+    throw Error(Status::InvalidInput, "the surface is not manifold: the edge (" +
+                                          std::to_string(input_id(plc.first_branching_edge[0])) + ", " +
+                                          std::to_string(input_id(plc.first_branching_edge[1])) + ") has " +
+                                          std::to_string(plc.first_branching_triangles) + " triangles");
   }
-  return closed;
+  return plc.open_edges == 0;
 }
 
 // Connected parts of the surface (triangles sharing a vertex), for the initial sample.
@@ -407,6 +400,7 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
   progress(0.0, "checking input");
   cdt3d::CheckOptions check;
   check.require_closed = false;
+  check.facets = false;
   const cdt3d::Plc plc = cdt3d::check_surface(input, check, cb);
   st.closed_input = closed_manifold(plc);
   st.volume_meshed = options.mesh_volume && st.closed_input;
