@@ -239,36 +239,57 @@ long long find_close_triangles(const std::vector<Point3>& points, const std::vec
 
 EdgeTable build_edges(const std::vector<std::array<int, 3>>& triangles) {
   // Bucket every edge (a < b) by a, then sort each small bucket by (b, triangle): linear
-  // work instead of one big sort.
+  // work instead of one big sort. In parallel: the buckets filled by atomic counters (their
+  // order is then fixed by the sort), the table from per-bucket counts of distinct edges.
   const long long nt = static_cast<long long>(triangles.size());
+  const bool parallel = nt > 20000;
   int nv = 0;
-  for (const auto& t : triangles) nv = std::max({nv, t[0] + 1, t[1] + 1, t[2] + 1});
+#pragma omp parallel for reduction(max : nv) schedule(static) if (parallel)
+  for (long long t = 0; t < nt; ++t) nv = std::max({nv, triangles[t][0] + 1, triangles[t][1] + 1, triangles[t][2] + 1});
   std::vector<int> start(nv + 1, 0);
-  for (const auto& t : triangles)
-    for (int k = 0; k < 3; ++k) ++start[std::min(t[k], t[(k + 1) % 3]) + 1];
+#pragma omp parallel for schedule(static) if (parallel)
+  for (long long t = 0; t < nt; ++t)
+    for (int k = 0; k < 3; ++k) {
+#pragma omp atomic
+      ++start[std::min(triangles[t][k], triangles[t][(k + 1) % 3]) + 1];
+    }
   for (int v = 0; v < nv; ++v) start[v + 1] += start[v];
   std::vector<std::pair<int, int>> slot(3 * nt);  // (b, triangle) in a's bucket
   {
     std::vector<int> fill(start.begin(), start.end() - 1);
+#pragma omp parallel for schedule(static) if (parallel)
     for (long long t = 0; t < nt; ++t)
       for (int k = 0; k < 3; ++k) {
         const int a = triangles[t][k], b = triangles[t][(k + 1) % 3];
-        slot[fill[std::min(a, b)]++] = {std::max(a, b), static_cast<int>(t)};
+        int at;
+#pragma omp atomic capture
+        at = fill[std::min(a, b)]++;
+        slot[at] = {std::max(a, b), static_cast<int>(t)};
       }
   }
-#pragma omp parallel for schedule(dynamic, 1024) if (nt > 20000)
-  for (int v = 0; v < nv; ++v) std::sort(slot.begin() + start[v], slot.begin() + start[v + 1]);
+  std::vector<int> distinct(nv + 1, 0);  // per bucket: its distinct edges, then their offsets
+#pragma omp parallel for schedule(dynamic, 1024) if (parallel)
+  for (int v = 0; v < nv; ++v) {
+    std::sort(slot.begin() + start[v], slot.begin() + start[v + 1]);
+    for (int i = start[v]; i < start[v + 1]; ++i) distinct[v + 1] += i == start[v] || slot[i].first != slot[i - 1].first;
+  }
+  for (int v = 0; v < nv; ++v) distinct[v + 1] += distinct[v];
   EdgeTable table;
   table.tri.resize(slot.size());
-  for (int a = 0; a < nv; ++a)
+  table.edge.resize(distinct[nv]);
+  table.start.resize(distinct[nv] + 1);
+#pragma omp parallel for schedule(dynamic, 1024) if (parallel)
+  for (int a = 0; a < nv; ++a) {
+    int k = distinct[a];
     for (int i = start[a]; i < start[a + 1]; ++i) {
       if (i == start[a] || slot[i].first != slot[i - 1].first) {
-        table.start.push_back(i);
-        table.edge.push_back({a, slot[i].first});
+        table.start[k] = i;
+        table.edge[k++] = {a, slot[i].first};
       }
       table.tri[i] = slot[i].second;
     }
-  table.start.push_back(static_cast<int>(slot.size()));
+  }
+  table.start[distinct[nv]] = static_cast<int>(slot.size());
   return table;
 }
 
