@@ -65,15 +65,20 @@ std::vector<double> interior_seeds(const Plc& plc, double spacing_factor, double
   const std::size_t nt = plc.triangles.size();
   if (nt == 0 || spacing_factor <= 0) return seeds;
   auto P = [&](int i) { return V3{plc.points[i].x, plc.points[i].y, plc.points[i].z}; };
-  V3 lo = P(plc.triangles[0][0]), hi = lo;
-  double edge_sum = 0;
-  for (const auto& t : plc.triangles)
+  const V3 first = P(plc.triangles[0][0]);
+  double lx = first.x, ly = first.y, lz = first.z, hx = lx, hy = ly, hz = lz, edge_sum = 0;
+  const long long n = static_cast<long long>(nt);
+#pragma omp parallel for schedule(static) reduction(min : lx, ly, lz) reduction(max : hx, hy, hz) \
+    reduction(+ : edge_sum) if (n > 20000)
+  for (long long t = 0; t < n; ++t)
     for (int k = 0; k < 3; ++k) {
-      const V3 a = P(t[k]), b = P(t[(k + 1) % 3]);
-      lo = {std::min(lo.x, a.x), std::min(lo.y, a.y), std::min(lo.z, a.z)};
-      hi = {std::max(hi.x, a.x), std::max(hi.y, a.y), std::max(hi.z, a.z)};
+      const V3 a = P(plc.triangles[t][k]), b = P(plc.triangles[t][(k + 1) % 3]);
+      lx = std::min(lx, a.x), ly = std::min(ly, a.y), lz = std::min(lz, a.z);
+      hx = std::max(hx, a.x), hy = std::max(hy, a.y), hz = std::max(hz, a.z);
       edge_sum += std::sqrt(dot(sub(a, b), sub(a, b)));
     }
+  V3 lo{lx, ly, lz};
+  const V3 hi{hx, hy, hz};
   double h = spacing_factor * edge_sum / (3.0 * static_cast<double>(nt));
   const V3 size = sub(hi, lo);
   // At most a few million cells; too few for a lattice to matter: none.
@@ -107,10 +112,23 @@ std::vector<double> interior_seeds(const Plc& plc, double spacing_factor, double
       for (int y = y0; y <= y1; ++y)
         for (int x = x0; x <= x1; ++x) f(index(x, y, z));
   };
-  for (std::size_t t = 0; t < nt; ++t) for_cells(t, [&](std::size_t c) { ++count[c + 1]; });
+  // In parallel; the order within a cell does not matter (near_surface asks for any).
+#pragma omp parallel for schedule(static) if (n > 20000)
+  for (long long t = 0; t < n; ++t)
+    for_cells(t, [&](std::size_t c) {
+#pragma omp atomic
+      ++count[c + 1];
+    });
   for (std::size_t c = 1; c < count.size(); ++c) count[c] += count[c - 1];
   std::vector<int> items(count.back()), fill(count.begin(), count.end() - 1);
-  for (std::size_t t = 0; t < nt; ++t) for_cells(t, [&](std::size_t c) { items[fill[c]++] = static_cast<int>(t); });
+#pragma omp parallel for schedule(static) if (n > 20000)
+  for (long long t = 0; t < n; ++t)
+    for_cells(t, [&](std::size_t c) {
+      int at;
+#pragma omp atomic capture
+      at = fill[c]++;
+      items[at] = static_cast<int>(t);
+    });
   // Seeds off the cell centres by up to 0.15 h in each coordinate, pseudo-randomly: lattice
   // points are cospherical in eights, which sends every insphere test among them to exact
   // arithmetic (TetGen's CDT of a 369k-triangle surface took 1.4 s longer with them).
