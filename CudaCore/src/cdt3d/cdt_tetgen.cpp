@@ -40,7 +40,6 @@
 #include <csignal>
 #include <random>
 #include <numeric>
-#include <unordered_map>
 
 #include "cdt3d/bodies.h"
 #include "cdt3d/cdt3d.h"
@@ -455,15 +454,29 @@ void set_facet_planes(const Plc& plc, HostTetMesh& m) {
 // tseg: an edge is a subsegment iff both ends lie on one segment (its input endpoints, or
 // points that TetGen put on it).
 void mark_subsegments(const Plc& plc, HostTetMesh& m) {
-  const int ng = static_cast<int>(plc.segments.size());
+  const int ng = static_cast<int>(plc.segments.size()), nin = m.input_points;
   m.seg.resize(2 * static_cast<std::size_t>(ng));
-  std::unordered_map<std::uint64_t, int> by_ends;
-  by_ends.reserve(2 * static_cast<std::size_t>(ng));
+  // Per input point the other ends of its segments (a counted array): a few to scan.
+  std::vector<int> start(nin + 1, 0), other(2 * static_cast<std::size_t>(ng));
   for (int g = 0; g < ng; ++g) {
     m.seg[2 * g] = plc.segments[g][0];
     m.seg[2 * g + 1] = plc.segments[g][1];
-    by_ends[edge_key(plc.segments[g][0], plc.segments[g][1])] = g;
+    ++start[plc.segments[g][0] + 1];
+    ++start[plc.segments[g][1] + 1];
   }
+  for (int v = 0; v < nin; ++v) start[v + 1] += start[v];
+  {
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (int g = 0; g < ng; ++g) {
+      other[fill[plc.segments[g][0]]++] = plc.segments[g][1];
+      other[fill[plc.segments[g][1]]++] = plc.segments[g][0];
+    }
+  }
+  const auto joined = [&](int a, int b) {
+    for (int i = start[a]; i < start[a + 1]; ++i)
+      if (other[i] == b) return true;
+    return false;
+  };
   auto on = [&](int v, int g) {
     return v < m.input_points ? (m.seg[2 * g] == v || m.seg[2 * g + 1] == v)
                               : (m.ptype[v] == m3d::kSegmentPoint && m.pseg[v] == g);
@@ -475,7 +488,7 @@ void mark_subsegments(const Plc& plc, HostTetMesh& m) {
     for (int e = 0; e < 6; ++e) {
       const int a = m.tv[4 * t + m3d::edge_corner(e, 0)], b = m.tv[4 * t + m3d::edge_corner(e, 1)];
       bool sub;
-      if (a < m.input_points && b < m.input_points) sub = by_ends.count(edge_key(a, b)) > 0;
+      if (a < m.input_points && b < m.input_points) sub = joined(a, b);
       else if (a >= m.input_points) sub = m.ptype[a] == m3d::kSegmentPoint && on(b, m.pseg[a]);
       else sub = m.ptype[b] == m3d::kSegmentPoint && on(a, m.pseg[b]);
       if (sub) bits |= static_cast<std::uint8_t>(m3d::edge_bit(e));
