@@ -3,6 +3,7 @@
 // CPU (TetGen's library), mapped once into the engines' HostTetMesh.
 #pragma once
 #include <array>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -96,8 +97,9 @@ Plc check_surface(const Surface& surface, const CheckOptions& options = {},
 // PLC needs check_surface with require_closed. Throws Error(InvalidInput) when TetGen fails.
 // `seeds` (x, y, z each; see interior_seeds) join the Delaunay tetrahedralization as
 // isolated points; those in the domain come back as free points after the Steiner points.
+// `meanwhile` runs once, in this process, while TetGen's child runs (work to overlap with it).
 m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks = {},
-                             const std::vector<double>& seeds = {});
+                             const std::vector<double>& seeds = {}, const std::function<void()>& meanwhile = {});
 
 // TetGen's tetrahedralization stopped on one of its internal assertions, or did not finish,
 // in every point order tried (see tetgen_process.h). Seen on parts turned to an angle,

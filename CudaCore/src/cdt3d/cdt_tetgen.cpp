@@ -569,7 +569,7 @@ struct Trace {
 // tetrahedra dropped), in the attempts below; the last, -Y, only where `last_resort`.
 // `unsplit` says whether -Y made it. Throws TetGenAborted (the last failure's reason).
 HostTetMesh domain_cdt(const Plc& plc, const Callbacks& callbacks, const std::vector<double>& seeds,
-                       bool last_resort, bool& unsplit, Trace& stamp) {
+                       bool last_resort, bool& unsplit, Trace& stamp, const std::function<void()>& meanwhile) {
   // TetGen's facet recovery stops on an assertion, or loops, on some inputs (parts turned
   // to an angle, scan-like surfaces, nearly coplanar fans) for some point orders only: a
   // failure is retried without TetGen's merging of coplanar facets (M: every triangle
@@ -585,7 +585,10 @@ HostTetMesh domain_cdt(const Plc& plc, const Callbacks& callbacks, const std::ve
   const bool shuffle_first = std::getenv("GDR_TETGEN_SHUFFLE") != nullptr;  // tests: restore_order
   // Polled every 50 ms while TetGen runs: the progress hook too, where ParaView's GUI takes a
   // press on its abort button.
-  const auto waiting = [&callbacks]() {
+  bool started = false;
+  const auto waiting = [&callbacks, &meanwhile, &started]() {
+    if (!started && meanwhile) meanwhile();
+    started = true;
     if (callbacks.progress) callbacks.progress(0.0, "constrained Delaunay tetrahedralization (TetGen)");
     return callbacks.abort && callbacks.abort();
   };
@@ -665,7 +668,8 @@ HostTetMesh domain_cdt(const Plc& plc, const Callbacks& callbacks, const std::ve
 
 }  // namespace
 
-m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks, const std::vector<double>& seeds) {
+m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks, const std::vector<double>& seeds,
+                             const std::function<void()>& meanwhile) {
   if (plc.triangle_cell.size() != plc.triangles.size() || plc.cell_in_domain.empty())
     throw Error(Status::InvalidInput, "initial_cdt needs a closed surface checked with require_closed");
   if (callbacks.progress) callbacks.progress(0.0, "constrained Delaunay tetrahedralization (TetGen)");
@@ -681,7 +685,7 @@ m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks, const s
   HostTetMesh m;
   try {
     if (one_by_one) throw TetGenAborted("bodies nearly touching");
-    m = domain_cdt(plc, callbacks, seeds, bodies.count < 2, unsplit, stamp);
+    m = domain_cdt(plc, callbacks, seeds, bodies.count < 2, unsplit, stamp, meanwhile);
   } catch (const TetGenAborted& e) {
     if (bodies.count < 2) throw TetGenAborted(std::string(e.what()) + kOtherMesher);
     if (callbacks.warning && !one_by_one)
@@ -693,7 +697,7 @@ m3d::HostTetMesh initial_cdt(const Plc& plc, const Callbacks& callbacks, const s
       subs.push_back(body_plc(plc, bodies, b, seeds));
       bool body_unsplit = false;
       try {
-        parts.push_back(domain_cdt(subs.back().plc, callbacks, subs.back().seeds, true, body_unsplit, stamp));
+        parts.push_back(domain_cdt(subs.back().plc, callbacks, subs.back().seeds, true, body_unsplit, stamp, meanwhile));
       } catch (const TetGenAborted& eb) {
         throw TetGenAborted("body " + std::to_string(b + 1) + " of " + std::to_string(bodies.count) + ": " +
                             eb.what() + kOtherMesher);
