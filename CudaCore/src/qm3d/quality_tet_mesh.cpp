@@ -226,10 +226,11 @@ QualityTetResult quality_tet_mesh(const Surface& unscaled, const QualityTetOptio
                                           : std::vector<double>{};
     if (std::getenv("GDR_TRACE"))
       std::fprintf(stderr, "gdr-trace interior seeds: %zu points, %.3f s\n", seeds.size() / 3, since(t_seeds));
-    // The CUDA context is made while TetGen runs in its child: inputs of 10k triangles and
-    // more make enough tetrahedra for Auto to pick a warm GPU. Made before the fork instead,
-    // it slowed TetGen's step by 0.1-0.6 s of 3.3-4.3 s on a 369k-triangle surface (H100
-    // machine, hundred-and-thirteenth run).
+    // The CUDA context is made while TetGen runs in its child (inputs of 10k triangles and
+    // more make enough tetrahedra for Auto to pick a warm GPU). Made before the input checks,
+    // its device query took 0.1-0.2 s of them, and TetGen's step was slower than on the CPU
+    // backend in 5 of 6 pairs of runs on a 369k-triangle surface (H100 machine,
+    // hundred-and-thirteenth and hundred-and-fourteenth runs).
     return cdt3d::initial_cdt(plc, cb, seeds, [&] { prewarm_gpu(user_options.backend, unscaled.triangles.size(), 10000); });
   };
   m3d::HostTetMesh mesh;
