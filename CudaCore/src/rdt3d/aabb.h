@@ -33,7 +33,8 @@ struct HostAabb {
   std::vector<int> kids, order;
 };
 
-// Median split on the longest axis of the centroids' box, leaves of at most 4 triangles.
+// Median split on the longest axis of the centroids' box, leaves of at most 4 triangles;
+// nodes in pre-order (a subtree's nodes follow its root), subtrees built in parallel.
 HostAabb build_aabb(const std::vector<double>& xyz, const std::vector<int>& tri);
 
 GDR_HD_INLINE bool segment_meets_box(const double* box, const double* p, const double* q) {
