@@ -239,7 +239,7 @@ HostTetMesh convert(const Plc& plc, const tetgenio& out) {
   m.sv.resize(3 * static_cast<std::size_t>(nsf));
   m.st.assign(2 * static_cast<std::size_t>(nsf), -1);
   m.sfacet.resize(nsf);
-  int bad_marker = -1, not_a_face = -1, twice = -1;
+  int bad_marker = -1, not_a_face = -1, twice = -1, two_on_one_side = -1;
   const auto first = [](int& into, int s) {
 #pragma omp critical(gdr_cdt_bad_subface)
     if (into < 0 || s < into) into = s;
@@ -263,7 +263,9 @@ HostTetMesh convert(const Plc& plc, const tetgenio& out) {
     }
     for (const int y : {x, m.tn[x]}) {
       if (y < 0) continue;
-      m.st[2 * s + (face_orientation(m.tv, y / 4, y % 4, a, b) == 1 ? 0 : 1)] = y;
+      int& side = m.st[2 * s + (face_orientation(m.tv, y / 4, y % 4, a, b) == 1 ? 0 : 1)];
+      if (side >= 0) first(two_on_one_side, s);
+      side = y;
       int before;
 #pragma omp atomic capture
       { before = m.tsub[y]; m.tsub[y] = s; }
@@ -273,6 +275,7 @@ HostTetMesh convert(const Plc& plc, const tetgenio& out) {
   if (bad_marker >= 0) internal("subface " + str(bad_marker) + " has marker " + str(out.trifacemarkerlist[bad_marker]));
   if (not_a_face >= 0) internal("subface " + str(not_a_face) + " is not a face of the tets TetGen gives for it");
   if (twice >= 0) internal("TetGen returned subface " + str(twice) + " twice");
+  if (two_on_one_side >= 0) internal("subface " + str(two_on_one_side) + " has two tets on one side");
   std::vector<char> on_surface(nin, 0);
   for (int s = 0; s < nsf; ++s)
     for (int k = 0; k < 3; ++k)
