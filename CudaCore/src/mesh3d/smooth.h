@@ -291,6 +291,7 @@ SmoothResult smooth_slivers(DeviceTetMesh<Space>& mesh, const SmoothParams& sp, 
   res.slivers_before = count_slivers();
   res.min_sine_before = min_sine;
   long long slivers = res.slivers_before;
+  int stale = 0;  // rounds in a row that removed under 1% of the slivers
   mesh.mark.zero();
   for (int round = 0; round < sp.max_rounds && slivers > 0; ++round) {
     const int* vt = vtet.data();
@@ -328,8 +329,11 @@ SmoothResult smooth_slivers(DeviceTetMesh<Space>& mesh, const SmoothParams& sp, 
       std::fprintf(stderr, "gdr-trace slivers round %d: %zu candidates, %lld moved, %lld slivers left\n",
                    round + 1, nc, nmoved, slivers);
     // Stuck, or nearly: the rest are local optima (on the H100 the last rounds of 40 took
-    // as long as the first and removed a few slivers each).
-    if (nmoved * 50 < static_cast<long long>(nc) || 100 * (was - slivers) < was) break;
+    // as long as the first and removed a few slivers each). One round may remove none (a
+    // move raises its star's least angle, not always past the target), so two such
+    // rounds in a row end it.
+    stale = 100 * (was - slivers) < was ? stale + 1 : 0;
+    if (nmoved * 50 < static_cast<long long>(nc) || stale == 2) break;
   }
   res.slivers_after = slivers;
   res.min_sine_after = min_sine;
