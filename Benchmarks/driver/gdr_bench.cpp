@@ -19,6 +19,7 @@
 #include <sstream>
 
 #include "bench.h"
+#include "process_settings.h"
 #include "gdr/backend.h"
 #include "gdr/error.h"
 #include "gdr/io.h"
@@ -321,6 +322,7 @@ void usage() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  gdr::cli::settle_process(argv);  // as gdr starts (the baselines get the user's settings back)
   Settings s;
   s.data_dir = GDR_BENCH_DATA_DIR;
   std::string cases_path, generate_spec, generate_out;

@@ -16,6 +16,7 @@
 
 #include "bench.h"
 #include "gdr/error.h"
+#include "process_settings.h"
 
 namespace gdr_bench {
 
@@ -45,6 +46,7 @@ ProcessResult run_process(const std::vector<std::string>& argv, double timeout_s
       std::fprintf(stderr, "cannot enter %s: %s\n", cwd.c_str(), std::strerror(errno));
       _exit(127);
     }
+    gdr::cli::restore_user_tunables();
     execv(args[0], args.data());
     std::fprintf(stderr, "cannot run %s: %s\n", args[0], std::strerror(errno));
     _exit(127);

@@ -148,6 +148,8 @@ int run_selfcheck(const std::vector<std::string>& args) {
   if (waiting.empty()) waiting = env("GOMP_SPINCOUNT");
   if (waiting.empty()) waiting = "OpenMP's default";
   std::printf("  CPU backend  OpenMP, %d threads, waiting %s\n", cpu_threads(), waiting.c_str());
+  const std::string tunables = env("GLIBC_TUNABLES");
+  std::printf("  host memory  %s\n", tunables.empty() ? "glibc's default pages" : tunables.c_str());
   if (dev.available)
     std::printf("  CUDA device  %s, %s\n", dev.name.c_str(), bytes(dev.total_memory).c_str());
   else

@@ -1,6 +1,4 @@
 // gdr: command-line front end of the GPU Delaunay refinement engine.
-#include <unistd.h>
-
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -11,6 +9,7 @@
 #include "build_info.h"
 #include "cli.h"
 #include "gdr/error.h"
+#include "process_settings.h"
 
 namespace {
 
@@ -86,23 +85,10 @@ int dispatch(const std::vector<std::string>& argv) {
   throw UsageError("", "unknown command '" + cmd + "'");
 }
 
-// OpenMP's threads spin at every barrier before they sleep. Where other work shares the cores
-// they spin while the thread they wait for is not running: two runs of 16 threads at once on
-// 16 cores refined the counties map in 30 s each, against 0.2 s alone (libgomp's default;
-// 2.2 s with a spin of 10,000, 0.6 s with passive waiting, which costs 1.4-1.7x on free cores;
-// Benchmarks/RESULTS.md, sixty-third and sixty-fourth runs). libgomp reads its settings when
-// it loads, before main: unless the user chose, set the short spin and start again.
-void settle_openmp_waiting(char** argv) {
-  for (const char* chosen : {"OMP_WAIT_POLICY", "GOMP_SPINCOUNT"})
-    if (const char* v = std::getenv(chosen); v && *v) return;
-  if (setenv("GOMP_SPINCOUNT", "10000", 1) != 0) return;
-  execv("/proc/self/exe", argv);  // returns only if it failed: go on as we are
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
-  settle_openmp_waiting(argv);
+  gdr::cli::settle_process(argv);
   std::vector<std::string> args(argv + 1, argv + argc);
   try {
     return dispatch(args);
