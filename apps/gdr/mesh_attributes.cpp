@@ -30,8 +30,9 @@ io::Attributes triangle_attributes(const TriMesh& mesh, double min_angle_deg) {
   }
 
   io::Attributes attributes;
-  attributes.cell_data = {std::move(min_angle), std::move(max_angle), std::move(radius_edge),
-                          std::move(area), std::move(is_bad)};
+  // Moved one by one: a braced list would copy each array (its elements are const).
+  for (io::DataArray* a : {&min_angle, &max_angle, &radius_edge, &area, &is_bad})
+    attributes.cell_data.push_back(std::move(*a));
   return attributes;
 }
 
