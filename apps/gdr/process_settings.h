@@ -20,7 +20,7 @@ inline constexpr const char* kUserTunables = "GDR_USER_GLIBC_TUNABLES";
 // - Large allocations on transparent huge pages (glibc.malloc.hugetlb=1; the kernel's usual
 //   "madvise" mode gives them only on request): a 4 KiB page fault at each first touch was a
 //   quarter of one thread's 2D run of a 1M-segment map, reading and writing included
-//   (RESULTS.md, hundred-and-sixteenth run).
+//   (Benchmarks/RESULTS.md, 2026-12-07, host memory on huge pages).
 inline void settle_process(char** argv) {
   const auto chosen = [](const char* name) {
     const char* v = std::getenv(name);
