@@ -4,6 +4,7 @@
 #pragma once
 #include <array>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,8 @@
 #include "mesh3d/host_mesh.h"
 
 namespace gdr::cdt3d {
+
+struct EdgeTable;  // cdt3d/internal.h
 
 // A checked piecewise linear complex. Points keep the input order, with exact duplicates
 // merged into their first occurrence and points that no triangle or segment uses dropped.
@@ -55,6 +58,7 @@ struct Plc {
   std::array<int, 2> first_branching_edge = {-1, -1};
   int first_branching_triangles = 0;
   double volume = 0;                             // of the domain: sum of its cells' volumes
+  std::shared_ptr<const EdgeTable> edges;        // of the final triangles (CheckOptions::keep_edges)
 };
 
 struct CheckOptions {
@@ -70,6 +74,9 @@ struct CheckOptions {
   // false: no facets and no segments but the input's own (checked to be triangle edges);
   // the restricted mesher finds its features itself.
   bool facets = true;
+  // Keep the edge table of the final triangles in Plc::edges (the restricted mesher's
+  // feature search reads it: building it again took 0.25 s for 1.48M triangles on 2 cores).
+  bool keep_edges = false;
 };
 
 // Checks `surface` and cleans it into a Plc. Throws Error(InvalidInput) for NaN/Inf

@@ -525,6 +525,7 @@ Plc check_surface(const Surface& surface, const CheckOptions& options, const Cal
   progress(callbacks, 0.8, "facets and segments");
   if (options.facets) make_facets(surface, edges, options, plc);
   make_segments(surface, edges, origin, options.facets, plc);
+  if (options.keep_edges) plc.edges = std::make_shared<const EdgeTable>(std::move(edges));
   stamp("facets, segments");
   progress(callbacks, 1.0, "surface checked");
   return plc;

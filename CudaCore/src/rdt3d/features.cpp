@@ -42,7 +42,9 @@ Features find_features(const cdt3d::Plc& plc, const std::vector<std::array<int, 
   for (auto& e : f.edges)
     if (e[0] > e[1]) std::swap(e[0], e[1]);
   if (feature_angle_deg > 0) {
-    const cdt3d::EdgeTable table = cdt3d::build_edges(plc.triangles);
+    cdt3d::EdgeTable own;  // where check_surface kept none
+    if (!plc.edges) own = cdt3d::build_edges(plc.triangles);
+    const cdt3d::EdgeTable& table = plc.edges ? *plc.edges : own;
     for (int k = 0; k < table.size(); ++k) {
       const auto [a, b] = table.edge[k];
       bool sharp = table.count(k) != 2;  // a boundary edge (an edge of 3+ is refused before)

@@ -401,7 +401,8 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
   cdt3d::CheckOptions check;
   check.require_closed = false;
   check.facets = false;
-  const cdt3d::Plc plc = cdt3d::check_surface(input, check, cb);
+  check.keep_edges = options.feature_angle > 0;
+  cdt3d::Plc plc = cdt3d::check_surface(input, check, cb);
   st.closed_input = closed_manifold(plc);
   st.volume_meshed = options.mesh_volume && st.closed_input;
   if (options.mesh_volume && !st.closed_input && cb.warning)
@@ -409,6 +410,7 @@ RestrictedDelaunayResult restricted_delaunay_3d(const Surface& unscaled, const R
   std::vector<std::array<int, 2>> input_segments;
   for (const auto& g : input.segments) input_segments.push_back({plc.point_map[g[0]], plc.point_map[g[1]]});
   const rdt3d::Features features = rdt3d::find_features(plc, input_segments, options.feature_angle);
+  plc.edges.reset();  // read only by the feature search
   st.feature_edges = static_cast<long long>(features.edges.size());
   st.corners = features.corners;
   st.feature_angle = options.feature_angle;
