@@ -42,9 +42,8 @@ Features find_features(const cdt3d::Plc& plc, const std::vector<std::array<int, 
   for (auto& e : f.edges)
     if (e[0] > e[1]) std::swap(e[0], e[1]);
   if (feature_angle_deg > 0) {
-    cdt3d::EdgeTable own;  // where check_surface kept none
-    if (!plc.edges) own = cdt3d::build_edges(plc.triangles);
-    const cdt3d::EdgeTable& table = plc.edges ? *plc.edges : own;
+    if (!plc.edges) throw Error(Status::InternalError, "feature search: the surface check kept no edge table");
+    const cdt3d::EdgeTable& table = *plc.edges;
     for (int k = 0; k < table.size(); ++k) {
       const auto [a, b] = table.edge[k];
       bool sharp = table.count(k) != 2;  // a boundary edge (an edge of 3+ is refused before)

@@ -18,7 +18,8 @@ struct Features {
 };
 enum : unsigned char { kNotFeature = 0, kOnFeature = 1, kCorner = 2 };
 
-// `feature_angle_deg` <= 0 detects none: only the input segments are features then.
+// `feature_angle_deg` <= 0 detects none: only the input segments are features then; above
+// 0 the edges come from plc.edges (CheckOptions::keep_edges).
 // `input_segments`: the input's segments, as Plc point ids (triangle edges: check_surface).
 Features find_features(const cdt3d::Plc& plc, const std::vector<std::array<int, 2>>& input_segments,
                        double feature_angle_deg);
