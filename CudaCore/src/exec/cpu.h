@@ -55,8 +55,9 @@ struct Ops<Cpu> {
       }
     }
     // Large blocks on 2 MiB pages where the kernel gives them on request (transparent huge
-    // pages in "madvise" mode, the usual default): a 4 KiB page fault per first touch was
-    // a sixth of one thread's 2D refinement of a 1M-segment map.
+    // pages in "madvise" mode, the usual default): with a 4 KiB page fault per first touch,
+    // one thread's 2D refinement of a 1M-segment map took 3.5-4.9 s against 2.8-4.1 s
+    // (Benchmarks/RESULTS.md, 2026-12-07, host memory on huge pages).
     void* p = std::aligned_alloc(c >= kHugePage ? kHugePage : 64, c);
 #ifdef MADV_HUGEPAGE
     if (p && c >= kHugePage) madvise(p, c, MADV_HUGEPAGE);
