@@ -25,6 +25,19 @@ namespace gdr::cli {
 
 namespace {
 
+// The kernel's transparent huge page mode (the bracketed word of its setting): "madvise" or
+// "always" give the pages gdr asks for, "never" none.
+std::string huge_page_mode() {
+  std::FILE* f = std::fopen("/sys/kernel/mm/transparent_hugepage/enabled", "r");
+  if (!f) return "unknown";
+  char line[128] = {};
+  const bool read = std::fgets(line, sizeof line, f) != nullptr;
+  std::fclose(f);
+  const std::string s = read ? line : "";
+  const std::size_t a = s.find('['), b = s.find(']');
+  return a != std::string::npos && b != std::string::npos && b > a ? s.substr(a + 1, b - a - 1) : "unknown";
+}
+
 const char* kHelpSelfcheck = R"(gdr selfcheck - check that this build works on this machine
 
 Usage:
@@ -149,7 +162,8 @@ int run_selfcheck(const std::vector<std::string>& args) {
   if (waiting.empty()) waiting = "OpenMP's default";
   std::printf("  CPU backend  OpenMP, %d threads, waiting %s\n", cpu_threads(), waiting.c_str());
   const std::string tunables = env("GLIBC_TUNABLES");
-  std::printf("  host memory  %s\n", tunables.empty() ? "glibc's default pages" : tunables.c_str());
+  std::printf("  host memory  %s, transparent huge pages %s\n",
+              tunables.empty() ? "glibc's default pages" : tunables.c_str(), huge_page_mode().c_str());
   if (dev.available)
     std::printf("  CUDA device  %s, %s\n", dev.name.c_str(), bytes(dev.total_memory).c_str());
   else
